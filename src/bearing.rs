@@ -1,0 +1,814 @@
+//! Bearing description: the preset / bearing-file schema (millimetres, degrees, GPa as the
+//! field names say), its validation, and the conversion to SI units done once on load.
+//!
+//! Data of the four shipped presets come from `../shared/data/bearings.md` ([W25], [D19],
+//! [L22], [Y22]); values the studies do not give are documented defaults, listed in each
+//! preset's `documented_defaults` and in the FMU documentation.
+//!
+//! Errors name the offending field by its path in the file (for example
+//! `rollers.length_mm: must be a finite number > 0, got -3`).
+
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::fmt;
+
+/// The presets compiled into the program and shipped in the FMU's `resources/`.
+pub const PRESETS: &[(&str, &str)] = &[
+    ("TRB130x230", include_str!("../presets/TRB130x230.json")),
+    ("32018X", include_str!("../presets/32018X.json")),
+    ("32008", include_str!("../presets/32008.json")),
+    ("CRB-TRILOBE", include_str!("../presets/CRB-TRILOBE.json")),
+];
+
+/// Name of the default preset.
+pub const DEFAULT_PRESET: &str = "TRB130x230";
+
+/// A bearing file could not be used. `field` is the path of the offending field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BearingError {
+    pub field: String,
+    pub message: String,
+}
+
+impl fmt::Display for BearingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "invalid bearing description: {}", self.message)
+        } else {
+            write!(f, "invalid bearing description: field `{}`: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for BearingError {}
+
+fn err(field: &str, message: impl Into<String>) -> BearingError {
+    BearingError { field: field.to_string(), message: message.into() }
+}
+
+// ---------------------------------------------------------------------------------------
+// File schema (units in the field names)
+// ---------------------------------------------------------------------------------------
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BearingFile {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    #[serde(default)]
+    pub source: String,
+    /// `tapered` or `cylindrical`.
+    pub kind: Kind,
+    pub envelope: EnvelopeFile,
+    pub rollers: RollersFile,
+    pub pitch_diameter_mm: f64,
+    /// Cone (inner raceway) contact angle to the bearing axis.
+    pub cone_angle_deg: f64,
+    /// Cup (outer raceway) contact angle to the bearing axis.
+    pub cup_angle_deg: f64,
+    /// Flange (rib) geometry; absent for bearings without a loaded flange (cylindrical).
+    #[serde(default)]
+    pub flange: Option<FlangeFile>,
+    pub materials: MaterialsFile,
+    pub contact_law: ContactLaw,
+    pub cage: CageFile,
+    pub lubricant: LubricantFile,
+    pub friction: FrictionFile,
+    #[serde(default)]
+    pub raceway: RacewayFile,
+    pub solver: SolverFile,
+    pub operating_point: OperatingPointFile,
+    /// Human-readable notes: which values are documented defaults and why.
+    #[serde(default)]
+    pub documented_defaults: Vec<String>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    Tapered,
+    Cylindrical,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactLaw {
+    /// Johnson line contact [W25].
+    Johnson,
+    /// Palmgren slices [D19, Y22, L22].
+    Palmgren,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvelopeFile {
+    pub bore_mm: f64,
+    pub outside_diameter_mm: f64,
+    pub width_mm: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RollersFile {
+    pub count: i64,
+    /// Effective contact length, measured along the roller axis.
+    pub length_mm: f64,
+    #[serde(default)]
+    pub mean_diameter_mm: Option<f64>,
+    #[serde(default)]
+    pub large_end_diameter_mm: Option<f64>,
+    #[serde(default)]
+    pub small_end_diameter_mm: Option<f64>,
+    /// Half-cone angle; if absent, (cup angle - cone angle)/2.
+    #[serde(default)]
+    pub half_cone_angle_deg: Option<f64>,
+    /// Radius of the spherical large end; if absent, the roller's apex distance.
+    #[serde(default)]
+    pub end_radius_mm: Option<f64>,
+    #[serde(default)]
+    pub crown_drop_um: f64,
+}
+
+/// Flange (rib) geometry in one of the conventions the studies use.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FlangeFile {
+    /// Angle between the flange contact normal and the radial plane (Harris; [W25] 83 deg).
+    #[serde(default)]
+    pub contact_angle_deg: Option<f64>,
+    /// Angle between the rib face normal and the bearing axis ([D19] "flange opening angle").
+    #[serde(default)]
+    pub opening_angle_deg: Option<f64>,
+    /// Angle between the rib face and the roller axis ([L22] "flange angle", rad).
+    #[serde(default)]
+    pub face_to_roller_axis_rad: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialFile {
+    #[serde(rename = "E_GPa")]
+    pub e_gpa: f64,
+    pub nu: f64,
+    pub density_kg_m3: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialsFile {
+    pub roller: MaterialFile,
+    pub rings: MaterialFile,
+    pub cage: MaterialFile,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CageFile {
+    pub pocket_clearance_mm: f64,
+    pub guide_clearance_mm: f64,
+    pub land_width_mm: f64,
+    pub land_radius_mm: f64,
+    pub mass_kg: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricantFile {
+    #[serde(rename = "eta0_Pa_s")]
+    pub eta0_pa_s: f64,
+    #[serde(rename = "alpha_per_Pa")]
+    pub alpha_per_pa: f64,
+    pub roughness_um: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LubricationModel {
+    Ehl,
+    Dry,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionFile {
+    pub model: LubricationModel,
+    pub mu: f64,
+    pub flange_mu0: f64,
+    pub cage_slip_rate: f64,
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RacewayFile {
+    #[serde(default)]
+    pub clearance_um: f64,
+    #[serde(default)]
+    pub outer_lobes: i64,
+    #[serde(default)]
+    pub outer_waveform_um: f64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverFile {
+    pub slices: i64,
+    pub tolerance: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PreloadFile {
+    Force,
+    Displacement,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OperatingPointFile {
+    pub speed_rpm: f64,
+    #[serde(rename = "Fx_N")]
+    pub fx_n: f64,
+    #[serde(rename = "Fy_N", default)]
+    pub fy_n: f64,
+    #[serde(rename = "Fz_N", default)]
+    pub fz_n: f64,
+    #[serde(default)]
+    pub xi_deg: f64,
+    #[serde(default)]
+    pub zeta_deg: f64,
+    #[serde(default)]
+    pub axial_displacement_um: f64,
+    pub preload: PreloadFile,
+}
+
+// ---------------------------------------------------------------------------------------
+// SI bearing
+// ---------------------------------------------------------------------------------------
+
+/// Elastic and mass properties of a material (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    pub e: f64,
+    pub nu: f64,
+    pub density: f64,
+}
+
+/// A validated bearing in SI units (m, rad, Pa, kg). Angles of the raceways are measured
+/// from the bearing axis; the flange contact angle from the radial plane (Harris).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Bearing {
+    pub name: String,
+    pub description: String,
+    pub source: String,
+    pub kind: Kind,
+    pub bore: f64,
+    pub outside_diameter: f64,
+    pub width: f64,
+    pub roller_count: usize,
+    pub roller_length: f64,
+    pub roller_mean_diameter: f64,
+    pub roller_half_angle: f64,
+    /// Spherical roller-end radius (0 when the bearing has no loaded flange).
+    pub roller_end_radius: f64,
+    pub pitch_diameter: f64,
+    pub cone_angle: f64,
+    pub cup_angle: f64,
+    /// Flange contact angle (normal to radial plane); `None` = no flange contact.
+    pub flange_angle: Option<f64>,
+    pub roller_material: Material,
+    pub ring_material: Material,
+    pub cage_material: Material,
+    pub contact_law: ContactLaw,
+    pub pocket_clearance: f64,
+    pub guide_clearance: f64,
+    pub land_width: f64,
+    pub land_radius: f64,
+    pub cage_mass: f64,
+    pub eta0: f64,
+    pub alpha: f64,
+    pub roughness: f64,
+    pub lubrication: LubricationModel,
+    pub mu: f64,
+    pub flange_mu0: f64,
+    pub cage_slip_rate: f64,
+    pub crown_drop: f64,
+    pub clearance: f64,
+    pub outer_lobes: u32,
+    pub outer_waveform: f64,
+    pub slices: usize,
+    pub tolerance: f64,
+    pub speed: f64,
+    pub fx: f64,
+    pub fy: f64,
+    pub fz: f64,
+    pub xi: f64,
+    pub zeta: f64,
+    pub axial_displacement: f64,
+    pub displacement_preload: bool,
+    pub documented_defaults: Vec<String>,
+}
+
+impl Bearing {
+    /// One of the presets compiled into the program.
+    pub fn preset(name: &str) -> Result<Bearing, BearingError> {
+        let text = PRESETS
+            .iter()
+            .find(|(n, _)| n.eq_ignore_ascii_case(name))
+            .map(|(_, t)| *t)
+            .ok_or_else(|| {
+                let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
+                err("", format!("unknown preset `{name}`; presets are {}", names.join(", ")))
+            })?;
+        Bearing::from_json(text)
+    }
+
+    /// The default bearing (`TRB130x230`).
+    pub fn default_preset() -> Bearing {
+        Bearing::preset(DEFAULT_PRESET).expect("the default preset is valid")
+    }
+
+    /// A preset name or a path to a bearing JSON file.
+    pub fn from_name_or_file(arg: &str) -> Result<Bearing, BearingError> {
+        if PRESETS.iter().any(|(n, _)| n.eq_ignore_ascii_case(arg)) {
+            return Bearing::preset(arg);
+        }
+        let path = std::path::Path::new(arg);
+        if path.exists() {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| err("", format!("cannot read bearing file {arg}: {e}")))?;
+            return Bearing::from_json(&text);
+        }
+        let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
+        Err(err("", format!("`{arg}` is neither a preset ({}) nor an existing file", names.join(", "))))
+    }
+
+    /// Parse and validate a bearing JSON text.
+    pub fn from_json(text: &str) -> Result<Bearing, BearingError> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let file: BearingFile = serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            let inner = e.into_inner();
+            let field = if path == "." { String::new() } else { path };
+            err(&field, inner.to_string())
+        })?;
+        file.to_bearing()
+    }
+
+    /// Mean roller radius.
+    pub fn roller_mean_radius(&self) -> f64 {
+        0.5 * self.roller_mean_diameter
+    }
+
+    /// Roller axis angle to the bearing axis.
+    pub fn roller_axis_angle(&self) -> f64 {
+        self.cone_angle + self.roller_half_angle
+    }
+
+    /// Whether the roller and cone have axial stiffness (a tapered bearing or a flange).
+    pub fn has_axial_stiffness(&self) -> bool {
+        self.kind == Kind::Tapered
+    }
+}
+
+fn finite(field: &str, v: f64) -> Result<f64, BearingError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(err(field, format!("must be a finite number, got {v}")))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, BearingError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(err(field, format!("must be a finite number > 0, got {v}")))
+    }
+}
+
+fn non_negative(field: &str, v: f64) -> Result<f64, BearingError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(err(field, format!("must be a finite number >= 0, got {v}")))
+    }
+}
+
+fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, BearingError> {
+    if v.is_finite() && v >= lo && v <= hi {
+        Ok(v)
+    } else {
+        Err(err(field, format!("must lie in [{lo}, {hi}], got {v}")))
+    }
+}
+
+fn material(field: &str, m: &MaterialFile) -> Result<Material, BearingError> {
+    Ok(Material {
+        e: in_range(&format!("{field}.E_GPa"), m.e_gpa, 0.1, 2000.0)? * 1e9,
+        nu: in_range(&format!("{field}.nu"), m.nu, 0.0, 0.499)?,
+        density: in_range(&format!("{field}.density_kg_m3"), m.density_kg_m3, 100.0, 30000.0)?,
+    })
+}
+
+const MM: f64 = 1e-3;
+const UM: f64 = 1e-6;
+
+impl BearingFile {
+    /// Validate and convert to SI.
+    pub fn to_bearing(&self) -> Result<Bearing, BearingError> {
+        if self.name.trim().is_empty() {
+            return Err(err("name", "must not be empty"));
+        }
+        let bore = positive("envelope.bore_mm", self.envelope.bore_mm)? * MM;
+        let od = positive("envelope.outside_diameter_mm", self.envelope.outside_diameter_mm)? * MM;
+        let width = positive("envelope.width_mm", self.envelope.width_mm)? * MM;
+        if od <= bore {
+            return Err(err("envelope.outside_diameter_mm", "must exceed the bore"));
+        }
+        let z = self.rollers.count;
+        if z < 3 || z as usize > crate::variables::MAX_ROLLERS {
+            return Err(err(
+                "rollers.count",
+                format!("must be an integer in [3, {}], got {z}", crate::variables::MAX_ROLLERS),
+            ));
+        }
+        let z = z as usize;
+        let length = positive("rollers.length_mm", self.rollers.length_mm)? * MM;
+        let cone = in_range("cone_angle_deg", self.cone_angle_deg, 0.0, 45.0)?.to_radians();
+        let cup = in_range("cup_angle_deg", self.cup_angle_deg, 0.0, 60.0)?.to_radians();
+        if cup < cone {
+            return Err(err("cup_angle_deg", "must not be smaller than cone_angle_deg"));
+        }
+        let half_from_angles = 0.5 * (cup - cone);
+        let half = match self.rollers.half_cone_angle_deg {
+            Some(h) => {
+                let h = in_range("rollers.half_cone_angle_deg", h, 0.0, 20.0)?.to_radians();
+                if (h - half_from_angles).abs() > 0.02_f64.to_radians() {
+                    return Err(err(
+                        "rollers.half_cone_angle_deg",
+                        format!(
+                            "{:.4} deg disagrees with (cup_angle_deg - cone_angle_deg)/2 = {:.4} deg",
+                            h.to_degrees(),
+                            half_from_angles.to_degrees()
+                        ),
+                    ));
+                }
+                h
+            }
+            None => half_from_angles,
+        };
+        match self.kind {
+            Kind::Cylindrical => {
+                if cone != 0.0 || cup != 0.0 {
+                    return Err(err("cone_angle_deg", "a cylindrical bearing has zero raceway angles"));
+                }
+                if self.flange.is_some() {
+                    return Err(err("flange", "a cylindrical roller bearing carries no flange load here; remove the field"));
+                }
+            }
+            Kind::Tapered => {
+                if cup <= 0.0 {
+                    return Err(err("cup_angle_deg", "a tapered bearing needs a cup angle > 0"));
+                }
+            }
+        }
+        // Roller diameters: mean, or large end, or both ends.
+        let tan_h = half.tan();
+        let r = &self.rollers;
+        let mean_d = match (r.mean_diameter_mm, r.large_end_diameter_mm, r.small_end_diameter_mm) {
+            (Some(m), None, None) => positive("rollers.mean_diameter_mm", m)? * MM,
+            (None, Some(l), None) => {
+                positive("rollers.large_end_diameter_mm", l)? * MM - length * tan_h
+            }
+            (None, None, Some(s)) => {
+                positive("rollers.small_end_diameter_mm", s)? * MM + length * tan_h
+            }
+            (None, Some(l), Some(s)) => {
+                let l = positive("rollers.large_end_diameter_mm", l)? * MM;
+                let s = positive("rollers.small_end_diameter_mm", s)? * MM;
+                if s > l {
+                    return Err(err("rollers.small_end_diameter_mm", "exceeds the large-end diameter"));
+                }
+                let implied = ((l - s) / (2.0 * length)).atan();
+                if (implied - half).abs() > 0.05_f64.to_radians() {
+                    return Err(err(
+                        "rollers.small_end_diameter_mm",
+                        format!(
+                            "end diameters imply a half-cone angle of {:.4} deg, the raceways {:.4} deg",
+                            implied.to_degrees(),
+                            half.to_degrees()
+                        ),
+                    ));
+                }
+                0.5 * (l + s)
+            }
+            _ => {
+                return Err(err(
+                    "rollers.mean_diameter_mm",
+                    "give exactly one of mean_diameter_mm, large_end_diameter_mm, or both end diameters",
+                ))
+            }
+        };
+        if mean_d <= 0.0 || length * tan_h >= mean_d {
+            return Err(err("rollers.length_mm", "roller would have a non-positive small-end diameter"));
+        }
+        let dm = positive("pitch_diameter_mm", self.pitch_diameter_mm)? * MM;
+        if dm <= bore || dm >= od {
+            return Err(err(
+                "pitch_diameter_mm",
+                format!("{:.3} mm must lie between the bore and the outside diameter", dm / MM),
+            ));
+        }
+        let axis = cone + half;
+        // The roller must fit radially inside the envelope and the rollers on the pitch circle.
+        let radial_extent = 0.5 * mean_d * axis.cos() + 0.5 * length * axis.sin();
+        if 0.5 * dm - radial_extent <= 0.5 * bore || 0.5 * dm + radial_extent >= 0.5 * od {
+            return Err(err(
+                "rollers.mean_diameter_mm",
+                format!(
+                    "a roller of diameter {:.3} mm and length {:.3} mm on pitch diameter {:.3} mm does not fit between bore {:.3} mm and outside diameter {:.3} mm",
+                    mean_d / MM,
+                    length / MM,
+                    dm / MM,
+                    bore / MM,
+                    od / MM
+                ),
+            ));
+        }
+        if PI * dm / (z as f64) <= mean_d {
+            return Err(err(
+                "rollers.count",
+                format!(
+                    "{z} rollers of mean diameter {:.3} mm do not fit on a pitch circle of {:.3} mm",
+                    mean_d / MM,
+                    dm / MM
+                ),
+            ));
+        }
+        // Flange
+        let flange_angle = match (&self.flange, self.kind) {
+            (None, Kind::Tapered) => {
+                return Err(err("flange", "a tapered roller bearing needs its flange (rib) geometry"))
+            }
+            (None, Kind::Cylindrical) => None,
+            (Some(f), _) => {
+                let given = [f.contact_angle_deg.is_some(), f.opening_angle_deg.is_some(), f.face_to_roller_axis_rad.is_some()];
+                if given.iter().filter(|g| **g).count() != 1 {
+                    return Err(err(
+                        "flange",
+                        "give exactly one of contact_angle_deg, opening_angle_deg, face_to_roller_axis_rad",
+                    ));
+                }
+                let a = if let Some(a) = f.contact_angle_deg {
+                    in_range("flange.contact_angle_deg", a, 45.0, 90.0)?.to_radians()
+                } else if let Some(o) = f.opening_angle_deg {
+                    (90.0 - in_range("flange.opening_angle_deg", o, 0.0, 45.0)?).to_radians()
+                } else {
+                    let x = in_range("flange.face_to_roller_axis_rad", f.face_to_roller_axis_rad.unwrap(), 1.0, PI / 2.0)?;
+                    PI / 2.0 - axis + (PI / 2.0 - x)
+                };
+                Some(a)
+            }
+        };
+        let large_r = 0.5 * mean_d + 0.5 * length * tan_h;
+        // Distance of the flange contact from the bearing axis for end radius rs (the rib
+        // normal n_f = (sin af, -cos af), sphere centre on the roller axis at rs from the end):
+        // r_f = dm/2 + (l/2) sin(axis) + rs (cos af - sin(axis)).
+        let rib_radius = |af: f64, rs: f64| 0.5 * dm + 0.5 * length * axis.sin() + rs * (af.cos() - axis.sin());
+        let end_radius = match (flange_angle, r.end_radius_mm) {
+            (None, _) => 0.0,
+            (Some(_), Some(rs)) => positive("rollers.end_radius_mm", rs)? * MM,
+            (Some(af), None) => {
+                // Default: R_s = 0.9 of the rib's circumferential radius of curvature
+                // rho_p = r_f / cos(af), the middle of the 0.85 .. 0.95 rho_p design range.
+                // r_f is linear in R_s, so R_s = 0.9 r_f(R_s) / cos(af) is solved directly.
+                let c = 0.9 / af.cos();
+                let r0 = rib_radius(af, 0.0);
+                let slope = af.cos() - axis.sin();
+                c * r0 / (1.0 - c * slope)
+            }
+        };
+        if let Some(af) = flange_angle {
+            let rho_p = rib_radius(af, end_radius) / af.cos();
+            if end_radius > 1.05 * rho_p {
+                return Err(err(
+                    "rollers.end_radius_mm",
+                    format!(
+                        "roller end radius {:.3} mm exceeds the rib's radius of curvature {:.3} mm: the end would touch the rib at its edges",
+                        end_radius / MM,
+                        rho_p / MM
+                    ),
+                ));
+            }
+        }
+        if let Some(af) = flange_angle {
+            // The flange contact point must lie on the roller end face, on the cone side.
+            let offset = af - (PI / 2.0 - axis);
+            let h = end_radius * offset.sin();
+            if offset <= 0.0 || h >= large_r {
+                return Err(err(
+                    "flange",
+                    format!(
+                        "flange contact at {:.3} mm from the roller axis falls outside the roller end face (0 .. {:.3} mm on the cone side); check the flange angle and rollers.end_radius_mm",
+                        h / MM,
+                        large_r / MM
+                    ),
+                ));
+            }
+        }
+        let crown = non_negative("rollers.crown_drop_um", r.crown_drop_um)? * UM;
+        if crown > 0.05 * mean_d {
+            return Err(err("rollers.crown_drop_um", "is larger than 5 % of the roller diameter"));
+        }
+        let roller_material = material("materials.roller", &self.materials.roller)?;
+        let ring_material = material("materials.rings", &self.materials.rings)?;
+        let cage_material = material("materials.cage", &self.materials.cage)?;
+        let c = &self.cage;
+        let pocket = non_negative("cage.pocket_clearance_mm", c.pocket_clearance_mm)? * MM;
+        if pocket > 0.5 * mean_d {
+            return Err(err("cage.pocket_clearance_mm", "exceeds half the roller diameter"));
+        }
+        let guide = non_negative("cage.guide_clearance_mm", c.guide_clearance_mm)? * MM;
+        let land_width = positive("cage.land_width_mm", c.land_width_mm)? * MM;
+        let land_radius = positive("cage.land_radius_mm", c.land_radius_mm)? * MM;
+        let cage_mass = positive("cage.mass_kg", c.mass_kg)?;
+        let l = &self.lubricant;
+        let eta0 = in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0)?;
+        let alpha = in_range("lubricant.alpha_per_Pa", l.alpha_per_pa, 0.0, 1e-7)?;
+        let roughness = in_range("lubricant.roughness_um", l.roughness_um, 0.0, 100.0)? * UM;
+        let f = &self.friction;
+        let mu = in_range("friction.mu", f.mu, 0.0, 2.0)?;
+        let flange_mu0 = in_range("friction.flange_mu0", f.flange_mu0, 0.0, 2.0)?;
+        let slip = in_range("friction.cage_slip_rate", f.cage_slip_rate, 0.0, 1.0)?;
+        let rw = &self.raceway;
+        let clearance = finite("raceway.clearance_um", rw.clearance_um)? * UM;
+        if clearance.abs() > 0.05 * mean_d {
+            return Err(err("raceway.clearance_um", "magnitude exceeds 5 % of the roller diameter"));
+        }
+        if rw.outer_lobes < 0 || rw.outer_lobes > 64 {
+            return Err(err("raceway.outer_lobes", format!("must be an integer in [0, 64], got {}", rw.outer_lobes)));
+        }
+        let waveform = non_negative("raceway.outer_waveform_um", rw.outer_waveform_um)? * UM;
+        if waveform > 0.05 * mean_d {
+            return Err(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
+        }
+        let s = &self.solver;
+        if s.slices < 1 || s.slices > 200 {
+            return Err(err("solver.slices", format!("must be an integer in [1, 200], got {}", s.slices)));
+        }
+        let tolerance = in_range("solver.tolerance", s.tolerance, 1e-14, 0.1)?;
+        let op = &self.operating_point;
+        let speed = finite("operating_point.speed_rpm", op.speed_rpm)? * PI / 30.0;
+        let fx = finite("operating_point.Fx_N", op.fx_n)?;
+        let fy = finite("operating_point.Fy_N", op.fy_n)?;
+        let fz = finite("operating_point.Fz_N", op.fz_n)?;
+        let xi = in_range("operating_point.xi_deg", op.xi_deg, -5.0, 5.0)?.to_radians();
+        let zeta = in_range("operating_point.zeta_deg", op.zeta_deg, -5.0, 5.0)?.to_radians();
+        let ad = finite("operating_point.axial_displacement_um", op.axial_displacement_um)? * UM;
+        Ok(Bearing {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            source: self.source.clone(),
+            kind: self.kind,
+            bore,
+            outside_diameter: od,
+            width,
+            roller_count: z,
+            roller_length: length,
+            roller_mean_diameter: mean_d,
+            roller_half_angle: half,
+            roller_end_radius: end_radius,
+            pitch_diameter: dm,
+            cone_angle: cone,
+            cup_angle: cup,
+            flange_angle,
+            roller_material,
+            ring_material,
+            cage_material,
+            contact_law: self.contact_law,
+            pocket_clearance: pocket,
+            guide_clearance: guide,
+            land_width,
+            land_radius,
+            cage_mass,
+            eta0,
+            alpha,
+            roughness,
+            lubrication: f.model,
+            mu,
+            flange_mu0,
+            cage_slip_rate: slip,
+            crown_drop: crown,
+            clearance,
+            outer_lobes: rw.outer_lobes as u32,
+            outer_waveform: waveform,
+            slices: s.slices as usize,
+            tolerance,
+            speed,
+            fx,
+            fy,
+            fz,
+            xi,
+            zeta,
+            axial_displacement: ad,
+            displacement_preload: op.preload == PreloadFile::Displacement,
+            documented_defaults: self.documented_defaults.clone(),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn all_presets_load() {
+        for (name, _) in PRESETS {
+            let b = Bearing::preset(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(&b.name, name);
+        }
+    }
+
+    #[test]
+    fn trb130_values_are_the_published_ones_in_si() {
+        let b = Bearing::default_preset();
+        assert_eq!(b.roller_count, 17);
+        assert!((b.roller_length - 42.06e-3).abs() < 1e-12);
+        assert!((b.roller_mean_diameter - 21.37e-3).abs() < 1e-12);
+        assert!((b.pitch_diameter - 177.91e-3).abs() < 1e-12);
+        assert!((b.cup_angle.to_degrees() - 15.0).abs() < 1e-12);
+        assert!((b.cone_angle.to_degrees() - 5.0).abs() < 1e-12);
+        assert!((b.flange_angle.unwrap().to_degrees() - 83.0).abs() < 1e-12);
+        assert!((b.roller_end_radius - 153.95e-3).abs() < 1e-12);
+        assert!((b.roller_material.e - 201e9).abs() < 1.0);
+        assert!((b.speed - 3500.0 * PI / 30.0).abs() < 1e-12);
+        assert_eq!(b.fx, 30_000.0);
+    }
+
+    #[test]
+    fn published_roller_angles_are_consistent() {
+        let b = Bearing::preset("32008").unwrap();
+        assert!((b.roller_half_angle - 0.0262).abs() < 2e-4);
+        let b = Bearing::preset("32018X").unwrap();
+        assert!((b.roller_axis_angle().to_degrees() - 14.25).abs() < 1e-9);
+    }
+
+    fn default_json() -> serde_json::Value {
+        serde_json::from_str(PRESETS[0].1).unwrap()
+    }
+
+    fn error_of(v: serde_json::Value) -> BearingError {
+        Bearing::from_json(&v.to_string()).expect_err("must be rejected")
+    }
+
+    #[test]
+    fn missing_field_is_named() {
+        let mut v = default_json();
+        v["rollers"].as_object_mut().unwrap().remove("length_mm");
+        let e = error_of(v);
+        assert!(e.to_string().contains("length_mm"), "{e}");
+    }
+
+    #[test]
+    fn wrong_type_is_named() {
+        let mut v = default_json();
+        v["rollers"]["count"] = serde_json::json!("seventeen");
+        let e = error_of(v);
+        assert_eq!(e.field, "rollers.count", "{e}");
+    }
+
+    #[test]
+    fn invalid_values_are_named() {
+        for (path, value) in [
+            (vec!["rollers", "count"], serde_json::json!(0)),
+            (vec!["rollers", "length_mm"], serde_json::json!(-3.0)),
+            (vec!["pitch_diameter_mm"], serde_json::json!(1000.0)),
+            (vec!["rollers", "mean_diameter_mm"], serde_json::json!(90.0)),
+            (vec!["materials", "roller", "nu"], serde_json::json!(0.7)),
+            (vec!["solver", "slices"], serde_json::json!(0)),
+            (vec!["lubricant", "eta0_Pa_s"], serde_json::json!(-1.0)),
+        ] {
+            let mut v = default_json();
+            let mut cur = &mut v;
+            for p in &path[..path.len() - 1] {
+                cur = &mut cur[*p];
+            }
+            cur[*path.last().unwrap()] = value;
+            let e = error_of(v);
+            let want = path.join(".");
+            assert!(e.field.starts_with(&want) || e.to_string().contains(&want), "{want}: {e}");
+        }
+    }
+
+    #[test]
+    fn unknown_field_and_bad_json_are_rejected() {
+        let mut v = default_json();
+        v["rollers"]["lenght_mm"] = serde_json::json!(3.0);
+        let e = error_of(v);
+        assert!(e.to_string().contains("lenght_mm"), "{e}");
+        assert!(Bearing::from_json("{ not json").is_err());
+        assert!(Bearing::from_json("").is_err());
+        assert!(Bearing::from_name_or_file("/no/such/file.json").is_err());
+    }
+}

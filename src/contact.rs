@@ -1,0 +1,258 @@
+//! Contact laws (MODEL.md section 3): load-deflection of a roller slice on a raceway
+//! (Johnson line contact [W25], Palmgren [D19, Y22, L22]) and Hertz point contact of the
+//! spherical roller end on the rib with the Hamrock-Brewe ellipticity approximation [W25].
+//!
+//! Every law returns the load and its derivative with respect to the interference, so the
+//! Newton solver gets an exact Jacobian. Loads are zero for non-positive interference.
+
+use std::f64::consts::PI;
+
+/// Effective (plane-strain, combined) modulus E' = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2).
+/// MODEL.md writes it as E_bar with 1/E_bar = 0.5 ((1 - nu_r^2)/E_r + (1 - nu_b^2)/E_b).
+pub fn effective_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+    2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+}
+
+/// Palmgren's roller stiffness in SI: Q = K delta^(10/9) with K = 8.06e4 l^(8/9) in N and mm,
+/// i.e. 8.06e4 * 1000^(8/9 + 10/9) = 8.06e10 l^(8/9) with l and delta in metres.
+pub fn palmgren_roller_stiffness(length: f64) -> f64 {
+    8.06e10 * length.powf(8.0 / 9.0)
+}
+
+/// Where the Johnson law stops being trusted: ln(8 R / delta) - 1 >= 3, i.e. delta <= 8 R e^-4
+/// (about 0.15 R, far beyond any real interference). Beyond it the law continues linearly.
+const JOHNSON_LOG_FLOOR: f64 = 3.0;
+
+/// Load-deflection law of one slice, constants precomputed per slice.
+#[derive(Debug, Clone)]
+pub enum LineLaw {
+    /// q = c delta / (ln(8 R / delta) - 1), c = pi (l/s) E'; per-slice `eight_r` = 8 R_bar.
+    Johnson { c: f64, eight_r: Vec<f64> },
+    /// q = k delta^(10/9), k = K / s: the whole-roller stiffness split over the slices,
+    /// so the total load at uniform interference does not depend on s.
+    Palmgren { k: f64 },
+}
+
+impl LineLaw {
+    pub fn johnson(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
+        LineLaw::Johnson { c: PI * slice_len * e_prime, eight_r: r_bar.iter().map(|r| 8.0 * r).collect() }
+    }
+
+    pub fn palmgren(length: f64, slices: usize) -> LineLaw {
+        LineLaw::Palmgren { k: palmgren_roller_stiffness(length) / slices as f64 }
+    }
+
+    /// Load of slice `k` at interference `delta`, its derivative, and whether the law was
+    /// extrapolated beyond its validity range.
+    #[inline]
+    pub fn load(&self, k: usize, delta: f64) -> (f64, f64, bool) {
+        if delta <= 0.0 {
+            return (0.0, 0.0, false);
+        }
+        match self {
+            LineLaw::Johnson { c, eight_r } => johnson(*c, eight_r[k], delta),
+            LineLaw::Palmgren { k: kp } => {
+                let d19 = delta.powf(1.0 / 9.0);
+                let q = kp * delta * d19;
+                (q, kp * (10.0 / 9.0) * d19, false)
+            }
+        }
+    }
+
+    /// Interference at which slice `k` carries `q` (inverse law; for start values and tests).
+    pub fn deflection(&self, k: usize, q: f64) -> f64 {
+        if q <= 0.0 {
+            return 0.0;
+        }
+        match self {
+            LineLaw::Palmgren { k: kp } => (q / kp).powf(0.9),
+            LineLaw::Johnson { .. } => {
+                // Monotone: Newton from a power-law estimate, safeguarded by bisection.
+                let (mut lo, mut hi) = (0.0_f64, 1e-6_f64);
+                while self.load(k, hi).0 < q {
+                    lo = hi;
+                    hi *= 2.0;
+                    if hi > 1.0 {
+                        break;
+                    }
+                }
+                let mut d = 0.5 * (lo + hi);
+                for _ in 0..100 {
+                    let (f, df, _) = self.load(k, d);
+                    let r = f - q;
+                    if r > 0.0 {
+                        hi = d
+                    } else {
+                        lo = d
+                    }
+                    let mut next = if df > 0.0 { d - r / df } else { 0.5 * (lo + hi) };
+                    if !(next > lo && next < hi) {
+                        next = 0.5 * (lo + hi);
+                    }
+                    if (next - d).abs() <= 1e-15 * d {
+                        return next;
+                    }
+                    d = next;
+                }
+                d
+            }
+        }
+    }
+}
+
+#[inline]
+fn johnson(c: f64, eight_r: f64, delta: f64) -> (f64, f64, bool) {
+    let lg = (eight_r / delta).ln();
+    let den = lg - 1.0;
+    if den >= JOHNSON_LOG_FLOOR {
+        let q = c * delta / den;
+        // d/d delta [delta / (ln(8R/delta) - 1)] = (den + 1) / den^2 = lg / den^2
+        (q, c * lg / (den * den), false)
+    } else {
+        // Linear continuation from the edge of validity (C1).
+        let d0 = eight_r * (-(JOHNSON_LOG_FLOOR + 1.0)).exp();
+        let den0 = JOHNSON_LOG_FLOOR;
+        let q0 = c * d0 / den0;
+        let k0 = c * (den0 + 1.0) / (den0 * den0);
+        (q0 + k0 * (delta - d0), k0, true)
+    }
+}
+
+/// Hertz point contact of two bodies with principal relative radii `rx`, `ry` (aligned axes),
+/// with the Hamrock-Brewe (1983) closed-form ellipticity and elliptic integrals.
+#[derive(Debug, Clone, Copy)]
+pub struct PointContact {
+    /// Radius in the direction of the meridian (x) and circumferential (y) of the contact.
+    pub rx: f64,
+    pub ry: f64,
+    /// Curvature-sum radius R = 1 / (1/rx + 1/ry).
+    pub r: f64,
+    /// Ellipticity a/b (semi-axis along the larger radius over the other), >= 1.
+    pub k: f64,
+    /// Complete elliptic integrals of the second (E) and first (F) kind, approximated.
+    pub e_int: f64,
+    pub f_int: f64,
+    pub e_prime: f64,
+    /// Q = stiffness * delta^(3/2).
+    pub stiffness: f64,
+}
+
+impl PointContact {
+    pub fn new(rx: f64, ry: f64, e_prime: f64) -> PointContact {
+        let (small, large) = if rx <= ry { (rx, ry) } else { (ry, rx) };
+        let ratio = large / small;
+        let k = 1.0339 * ratio.powf(0.6360);
+        let e_int = 1.0003 + 0.5968 / ratio;
+        let f_int = 1.5277 + 0.6023 * ratio.ln();
+        let r = 1.0 / (1.0 / rx + 1.0 / ry);
+        // delta = F [ 9/(2 E R) (Q/(pi k E'))^2 ]^(1/3)  =>  Q = pi k E' sqrt(2 E R / 9) (delta/F)^(3/2)
+        let stiffness = PI * k * e_prime * (2.0 * e_int * r / 9.0).sqrt() / f_int.powf(1.5);
+        PointContact { rx, ry, r, k, e_int, f_int, e_prime, stiffness }
+    }
+
+    /// Load and its derivative at interference `delta`.
+    #[inline]
+    pub fn load(&self, delta: f64) -> (f64, f64) {
+        if delta <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let sq = delta.sqrt();
+        (self.stiffness * delta * sq, 1.5 * self.stiffness * sq)
+    }
+
+    /// Semi-axes (a along the larger radius, b) and maximum pressure at load `q`.
+    pub fn ellipse(&self, q: f64) -> (f64, f64, f64) {
+        if q <= 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let a = (6.0 * self.k * self.k * self.e_int * self.r * q / (PI * self.e_prime)).cbrt();
+        let b = (6.0 * self.e_int * self.r * q / (PI * self.k * self.e_prime)).cbrt();
+        let p_max = 1.5 * q / (PI * a * b);
+        (a, b, p_max)
+    }
+}
+
+/// Hertz line contact half-width and maximum pressure for load per unit length `w`.
+pub fn line_contact_half_width(w: f64, r_bar: f64, e_prime: f64) -> (f64, f64) {
+    if w <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let b = (8.0 * w * r_bar / (PI * e_prime)).sqrt();
+    (b, 2.0 * w / (PI * b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn palmgren_hand_value() {
+        // 1000 N on a 20 mm roller: delta = 3.84e-5 Q^0.9 / l^0.8 mm (Palmgren).
+        let law = LineLaw::palmgren(0.020, 1);
+        let delta_mm = 3.84e-5 * 1000.0_f64.powf(0.9) / 20.0_f64.powf(0.8);
+        let (q, _, _) = law.load(0, delta_mm * 1e-3);
+        assert!((q - 1000.0).abs() < 0.5, "q = {q}"); // 8.06e4 rounds 3.84e-5^(-10/9)
+        assert!((law.deflection(0, q) - delta_mm * 1e-3).abs() < 1e-15);
+    }
+
+    #[test]
+    fn johnson_hand_value() {
+        // q = pi l E' delta / (ln(8R/delta) - 1)
+        let (e, l, r, d) = (2.0e11_f64, 0.01_f64, 0.005_f64, 5e-6_f64);
+        let law = LineLaw::johnson(e, l, &[r]);
+        let expect = PI * l * e * d / ((8.0 * r / d).ln() - 1.0);
+        let (q, dq, ext) = law.load(0, d);
+        assert!((q - expect).abs() < 1e-9 * expect);
+        assert!(!ext);
+        let h = 1e-12;
+        let fd = (law.load(0, d + h).0 - law.load(0, d - h).0) / (2.0 * h);
+        assert!((dq - fd).abs() < 1e-5 * dq, "{dq} vs {fd}");
+        assert!((law.deflection(0, q) - d).abs() < 1e-12 * d);
+    }
+
+    #[test]
+    fn johnson_extrapolation_is_continuous_and_flagged() {
+        let law = LineLaw::johnson(2e11, 0.01, &[0.005]);
+        let d0 = 8.0 * 0.005 * (-4.0_f64).exp();
+        let (a, ka, e1) = law.load(0, d0 * (1.0 - 1e-9));
+        let (b, kb, e2) = law.load(0, d0 * (1.0 + 1e-9));
+        assert!(!e1 && e2);
+        assert!((a - b).abs() < 1e-6 * a);
+        assert!((ka - kb).abs() < 1e-6 * ka);
+    }
+
+    #[test]
+    fn no_load_without_interference() {
+        for law in [LineLaw::palmgren(0.02, 10), LineLaw::johnson(2e11, 0.002, &[0.01])] {
+            assert_eq!(law.load(0, 0.0).0, 0.0);
+            assert_eq!(law.load(0, -1e-6).0, 0.0);
+        }
+        let pc = PointContact::new(0.1, 0.2, 2.2e11);
+        assert_eq!(pc.load(-1e-6), (0.0, 0.0));
+    }
+
+    #[test]
+    fn sphere_on_plane_matches_hertz() {
+        // Sphere radius R on a plane: Q = 4/3 E* sqrt(R) delta^1.5 with E* = E'/2.
+        // The Hamrock-Brewe fits are within about 3 % at k = 1.
+        let (r, e) = (0.15_f64, 2.2e11);
+        // two equal principal relative radii r: a sphere of radius r on a plane
+        let pc_eq = PointContact::new(r, r, e);
+        let delta = 1e-5_f64;
+        let exact = 4.0 / 3.0 * (e / 2.0) * r.sqrt() * delta.powf(1.5);
+        let (q, _) = pc_eq.load(delta);
+        assert!((q - exact).abs() < 0.03 * exact, "{q} vs {exact}");
+        let (a, b, pmax) = pc_eq.ellipse(q);
+        let a_exact = (3.0 * q * r / (4.0 * e / 2.0)).cbrt();
+        assert!((a - a_exact).abs() < 0.03 * a_exact && (b - a_exact).abs() < 0.03 * a_exact);
+        assert!((pmax - 1.5 * q / (PI * a * b)).abs() < 1e-9 * pmax);
+    }
+
+    #[test]
+    fn line_contact_half_width_hand_value() {
+        // b = sqrt(8 w R / (pi E')), p0 = 2 w / (pi b)
+        let (b, p) = line_contact_half_width(1e6, 0.01, 2.2e11);
+        assert!((b - (8.0e6 * 0.01 / (PI * 2.2e11)).sqrt()).abs() < 1e-15);
+        assert!((p - 2.0e6 / (PI * b)).abs() < 1e-6 * p);
+    }
+}

@@ -1,0 +1,23 @@
+//! Tapered roller bearing element for system simulation, exported as an FMI 2.0
+//! Co-Simulation FMU (`TaperedRollerBearing`).
+//!
+//! Layers, bottom up (physics never imports FMI):
+//! - [`bearing`]: bearing descriptions (presets, JSON files) and their validation
+//! - [`geometry`]: derived geometry, slices, contact points, mass properties
+//! - [`contact`]: contact laws (Johnson, Palmgren, Hertz point contact)
+//! - [`tribology`]: film thickness, traction, rolling resistance
+//! - [`quasi_static`]: fidelity 0, the quasi-static equilibrium and friction torque
+//! - [`model`], [`simulation`]: parameters/inputs/outputs and the steppable element
+//! - [`variables`], [`model_description`]: the variable table and modelDescription.xml
+//! - [`fmi`]: the FMI 2.0 C ABI adapter
+
+pub mod bearing;
+pub mod fmi;
+pub mod contact;
+pub mod geometry;
+pub mod model;
+pub mod model_description;
+pub mod quasi_static;
+pub mod simulation;
+pub mod tribology;
+pub mod variables;

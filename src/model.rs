@@ -1,0 +1,373 @@
+//! The element's parameters, inputs and outputs in SI units, and the errors a model step can
+//! report. Shared by every fidelity level; knows nothing of FMI.
+
+use crate::bearing::{Bearing, LubricationModel};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Fidelity level (MODEL.md section 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Fidelity {
+    QuasiStatic = 0,
+    Dynamic = 1,
+}
+
+/// Lubrication model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Lubrication {
+    /// Boundary / mixed / full-film EHL friction.
+    Ehl = 0,
+    /// One Coulomb coefficient `mu` at all contacts [D19].
+    Dry = 1,
+}
+
+/// How the cone is loaded axially.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Preload {
+    /// Axial force `Fx`.
+    Force = 0,
+    /// Prescribed axial displacement `axialDisplacement`.
+    Displacement = 1,
+}
+
+/// Everything the user may set before initialization (FMU parameters).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Parameters {
+    pub fidelity: Fidelity,
+    pub lubrication: Lubrication,
+    pub preload: Preload,
+    pub slices: usize,
+    pub tolerance: f64,
+    pub mu: f64,
+    pub pocket_clearance: f64,
+    pub eta0: f64,
+    pub alpha: f64,
+    pub roughness: f64,
+    pub skew_model: bool,
+    pub clearance: f64,
+    pub outer_lobes: u32,
+    pub outer_waveform: f64,
+    pub cage_slip_rate: f64,
+    pub cage_angle0: f64,
+    pub crown_drop: f64,
+    pub flange_mu0: f64,
+    pub gyroscopic: bool,
+    pub centrifugal: bool,
+    /// Diameter deviation of each roller (m), one per roller.
+    pub roller_dd: Vec<f64>,
+}
+
+impl Parameters {
+    /// The defaults a bearing description carries.
+    pub fn from_bearing(b: &Bearing) -> Parameters {
+        Parameters {
+            fidelity: Fidelity::QuasiStatic,
+            lubrication: match b.lubrication {
+                LubricationModel::Ehl => Lubrication::Ehl,
+                LubricationModel::Dry => Lubrication::Dry,
+            },
+            preload: if b.displacement_preload { Preload::Displacement } else { Preload::Force },
+            slices: b.slices,
+            tolerance: b.tolerance,
+            mu: b.mu,
+            pocket_clearance: b.pocket_clearance,
+            eta0: b.eta0,
+            alpha: b.alpha,
+            roughness: b.roughness,
+            skew_model: false,
+            clearance: b.clearance,
+            outer_lobes: b.outer_lobes,
+            outer_waveform: b.outer_waveform,
+            cage_slip_rate: b.cage_slip_rate,
+            cage_angle0: 0.0,
+            crown_drop: b.crown_drop,
+            flange_mu0: b.flange_mu0,
+            gyroscopic: true,
+            centrifugal: true,
+            roller_dd: vec![0.0; b.roller_count],
+        }
+    }
+
+    /// Check every parameter against its valid range; the error names the parameter.
+    pub fn validate(&self, b: &Bearing) -> Result<(), ModelError> {
+        let bad = |name: &str, msg: String| Err(ModelError::InvalidParameter { name: name.to_string(), message: msg });
+        let d = b.roller_mean_diameter;
+        if self.slices < 1 || self.slices > 200 {
+            return bad("slices", format!("must be in [1, 200], got {}", self.slices));
+        }
+        if !(self.tolerance.is_finite() && self.tolerance >= 1e-14 && self.tolerance <= 0.1) {
+            return bad("tolerance", format!("must be in [1e-14, 0.1], got {}", self.tolerance));
+        }
+        if !(self.mu.is_finite() && (0.0..=2.0).contains(&self.mu)) {
+            return bad("mu", format!("must be in [0, 2], got {}", self.mu));
+        }
+        if !(self.pocket_clearance.is_finite() && self.pocket_clearance >= 0.0 && self.pocket_clearance <= 0.5 * d) {
+            return bad("cage.pocketClearance", format!("must be in [0, {:.3e}] m, got {}", 0.5 * d, self.pocket_clearance));
+        }
+        if !(self.eta0.is_finite() && self.eta0 > 0.0 && self.eta0 <= 100.0) {
+            return bad("oil.eta0", format!("must be in (0, 100] Pa s, got {}", self.eta0));
+        }
+        if !(self.alpha.is_finite() && self.alpha >= 0.0 && self.alpha <= 1e-7) {
+            return bad("oil.alpha", format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha));
+        }
+        if !(self.roughness.is_finite() && self.roughness >= 0.0 && self.roughness <= 1e-4) {
+            return bad("roughness", format!("must be in [0, 1e-4] m, got {}", self.roughness));
+        }
+        if !(self.clearance.is_finite() && self.clearance.abs() <= 0.05 * d) {
+            return bad("clearance", format!("magnitude must not exceed {:.3e} m (5 % of the roller diameter), got {}", 0.05 * d, self.clearance));
+        }
+        if self.outer_lobes > 64 {
+            return bad("outer.lobes", format!("must be in [0, 64], got {}", self.outer_lobes));
+        }
+        if !(self.outer_waveform.is_finite() && self.outer_waveform >= 0.0 && self.outer_waveform <= 0.05 * d) {
+            return bad("outer.waveform", format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.outer_waveform));
+        }
+        if !(self.cage_slip_rate.is_finite() && (0.0..=1.0).contains(&self.cage_slip_rate)) {
+            return bad("cageSlipRate", format!("must be in [0, 1], got {}", self.cage_slip_rate));
+        }
+        if !self.cage_angle0.is_finite() {
+            return bad("cage.angle0", format!("must be finite, got {}", self.cage_angle0));
+        }
+        if !(self.crown_drop.is_finite() && self.crown_drop >= 0.0 && self.crown_drop <= 0.05 * d) {
+            return bad("roller.crownDrop", format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.crown_drop));
+        }
+        if !(self.flange_mu0.is_finite() && (0.0..=2.0).contains(&self.flange_mu0)) {
+            return bad("flange.mu0", format!("must be in [0, 2], got {}", self.flange_mu0));
+        }
+        for (j, dd) in self.roller_dd.iter().enumerate() {
+            if !(dd.is_finite() && dd.abs() <= 0.01 * d) {
+                return bad(
+                    &format!("roller[{}].dD", j + 1),
+                    format!("magnitude must not exceed {:.3e} m (1 % of the roller diameter), got {dd}", 0.01 * d),
+                );
+            }
+        }
+        if self.fidelity == Fidelity::Dynamic {
+            return bad("fidelity", "the dynamic model (fidelity = 1) is not available in this build yet".into());
+        }
+        Ok(())
+    }
+}
+
+/// Continuous inputs (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Inputs {
+    /// Cone angular speed (rad/s).
+    pub speed: f64,
+    /// Cone misalignment about y (rad).
+    pub xi: f64,
+    /// Cone misalignment about z (rad).
+    pub zeta: f64,
+    pub fx: f64,
+    pub fy: f64,
+    pub fz: f64,
+    /// Prescribed axial displacement (m) in displacement preload.
+    pub axial_displacement: f64,
+}
+
+impl Inputs {
+    /// The operating point a bearing description carries.
+    pub fn from_bearing(b: &Bearing) -> Inputs {
+        Inputs {
+            speed: b.speed,
+            xi: b.xi,
+            zeta: b.zeta,
+            fx: b.fx,
+            fy: b.fy,
+            fz: b.fz,
+            axial_displacement: b.axial_displacement,
+        }
+    }
+
+    /// Reject NaN/inf and values outside the model's range, naming the input.
+    pub fn validate(&self, b: &Bearing) -> Result<(), ModelError> {
+        let named = [
+            ("speed", self.speed),
+            ("xi", self.xi),
+            ("zeta", self.zeta),
+            ("Fx", self.fx),
+            ("Fy", self.fy),
+            ("Fz", self.fz),
+            ("axialDisplacement", self.axial_displacement),
+        ];
+        for (name, v) in named {
+            if !v.is_finite() {
+                return Err(ModelError::InvalidInput { name, message: format!("is {v}; inputs must be finite") });
+            }
+        }
+        // Misalignment: the small-angle ring kinematics hold far beyond what a bearing survives.
+        let max_tilt = 0.5_f64.to_radians();
+        for (name, v) in [("xi", self.xi), ("zeta", self.zeta)] {
+            if v.abs() > max_tilt {
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!("{:.4} deg exceeds the model's range of +-0.5 deg of shaft deflection", v.to_degrees()),
+                });
+            }
+        }
+        // Displacement preload: more than 5 % of the roller diameter is not a bearing any more.
+        let max_disp = 0.05 * b.roller_mean_diameter;
+        if self.axial_displacement.abs() > max_disp {
+            return Err(ModelError::InvalidInput {
+                name: "axialDisplacement",
+                message: format!("{:.3e} m exceeds the model's range of +-{:.3e} m", self.axial_displacement, max_disp),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Outputs of the element now. Per-roller arrays have one entry per roller.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Outputs {
+    pub friction_torque: f64,
+    pub friction_torque_raceway: f64,
+    pub friction_torque_flange: f64,
+    pub friction_torque_cage: f64,
+    pub power_loss: f64,
+    pub cone_x: f64,
+    pub cone_y: f64,
+    pub cone_z: f64,
+    pub reaction_fx: f64,
+    pub reaction_my: f64,
+    pub reaction_mz: f64,
+    pub tilt_max: f64,
+    pub tilt_mean: f64,
+    pub skew_max: f64,
+    pub skew_mean: f64,
+    pub qi_max: f64,
+    pub qo_max: f64,
+    pub qf_max: f64,
+    pub loaded_rollers: i32,
+    pub cage_speed: f64,
+    pub solver_iterations: i32,
+    pub solver_residual: f64,
+    pub tilt: Vec<f64>,
+    pub skew: Vec<f64>,
+    pub qi: Vec<f64>,
+    pub qo: Vec<f64>,
+    pub qf: Vec<f64>,
+    pub qc: Vec<f64>,
+    pub azimuth: Vec<f64>,
+    pub nit: Vec<f64>,
+    pub not: Vec<f64>,
+    pub nft: Vec<f64>,
+    pub nis: Vec<f64>,
+    pub nos: Vec<f64>,
+    pub nfs: Vec<f64>,
+}
+
+impl Outputs {
+    /// Zero outputs with per-roller arrays of length `z`.
+    pub fn new(z: usize) -> Outputs {
+        let v = || vec![0.0; z];
+        Outputs {
+            tilt: v(),
+            skew: v(),
+            qi: v(),
+            qo: v(),
+            qf: v(),
+            qc: v(),
+            azimuth: v(),
+            nit: v(),
+            not: v(),
+            nft: v(),
+            nis: v(),
+            nos: v(),
+            nfs: v(),
+            ..Default::default()
+        }
+    }
+
+    /// Fill the over-all-rollers statistics from the per-roller arrays.
+    pub fn summarize(&mut self) {
+        let z = self.tilt.len().max(1) as f64;
+        self.tilt_max = self.tilt.iter().fold(0.0, |m, t| m.max(t.abs()));
+        self.tilt_mean = self.tilt.iter().sum::<f64>() / z;
+        self.skew_max = self.skew.iter().fold(0.0, |m, t| m.max(t.abs()));
+        self.skew_mean = self.skew.iter().sum::<f64>() / z;
+        self.qi_max = self.qi.iter().fold(0.0, |m, q| m.max(*q));
+        self.qo_max = self.qo.iter().fold(0.0, |m, q| m.max(*q));
+        self.qf_max = self.qf.iter().fold(0.0, |m, q| m.max(*q));
+        self.loaded_rollers = self.qi.iter().zip(&self.qo).filter(|(a, b)| **a > 0.0 && **b > 0.0).count() as i32;
+    }
+
+    /// True when every output is finite.
+    pub fn all_finite(&self) -> bool {
+        let scalars = [
+            self.friction_torque,
+            self.friction_torque_raceway,
+            self.friction_torque_flange,
+            self.friction_torque_cage,
+            self.power_loss,
+            self.cone_x,
+            self.cone_y,
+            self.cone_z,
+            self.reaction_fx,
+            self.reaction_my,
+            self.reaction_mz,
+            self.tilt_max,
+            self.tilt_mean,
+            self.skew_max,
+            self.skew_mean,
+            self.qi_max,
+            self.qo_max,
+            self.qf_max,
+            self.cage_speed,
+            self.solver_residual,
+        ];
+        scalars.iter().all(|v| v.is_finite())
+            && [&self.tilt, &self.skew, &self.qi, &self.qo, &self.qf, &self.qc, &self.azimuth, &self.nit, &self.not, &self.nft, &self.nis, &self.nos, &self.nfs]
+                .iter()
+                .all(|a| a.iter().all(|v| v.is_finite()))
+    }
+}
+
+/// How serious a model error is, in FMI terms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Severity {
+    /// The step could not be completed with these inputs; the master may retry (fmi2Discard).
+    Discard,
+    /// The inputs or parameters are invalid (fmi2Error).
+    Error,
+}
+
+/// What went wrong in a model evaluation. Messages say why, in the user's terms.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ModelError {
+    InvalidParameter { name: String, message: String },
+    InvalidInput { name: &'static str, message: String },
+    /// The Newton solver found no equilibrium within its iteration budget.
+    NoEquilibrium { message: String },
+}
+
+impl ModelError {
+    pub fn severity(&self) -> Severity {
+        match self {
+            ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => Severity::Error,
+            ModelError::NoEquilibrium { .. } => Severity::Discard,
+        }
+    }
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ModelError::InvalidParameter { name, message } => write!(f, "parameter {name} {message}"),
+            ModelError::InvalidInput { name, message } => write!(f, "input {name} {message}"),
+            ModelError::NoEquilibrium { message } => write!(f, "no quasi-static equilibrium: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+/// Diagnostics of one quasi-static solve (no allocation).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct SolveReport {
+    pub iterations: u32,
+    /// Residual relative to the reference force.
+    pub residual: f64,
+    /// Some slice interference exceeded the validity range of the line-contact law.
+    pub contact_law_extrapolated: bool,
+}

@@ -1,0 +1,235 @@
+//! `modelDescription.xml` for a bearing, generated from the variable table
+//! (`modelDescription/variables.json` via `variables::TABLE`) and the start values of a
+//! freshly instantiated element of that bearing. The same function runs in the packager
+//! and inside the FMU binary (which recomputes the GUID to check `fmuGUID`), so the XML,
+//! the value references and the start values cannot drift apart.
+//!
+//! The GUID is derived from the XML content itself: it changes whenever the model
+//! description changes.
+
+use crate::bearing::Bearing;
+use crate::simulation::Simulation;
+use crate::variables::{self, Causality, VarType, Variability};
+use sha2::{Digest, Sha256};
+use std::fmt::Write as _;
+
+/// The FMU's model identifier (binary name and function prefix-free exports).
+pub const MODEL_IDENTIFIER: &str = "TaperedRollerBearing";
+
+/// Log categories the FMU declares and passes to the logger.
+pub const LOG_CATEGORIES: &[(&str, &str)] = &[
+    ("logStatusWarning", "Warnings: results outside a law's validity range, slow convergence"),
+    ("logStatusDiscard", "Steps the model could not complete (no equilibrium within tolerance)"),
+    ("logStatusError", "Errors: invalid inputs, parameters, calls in the wrong state"),
+    ("logStatusFatal", "Fatal errors"),
+    ("logEvents", "Life cycle: instantiation, initialization, reset, termination"),
+    ("logSolver", "Newton iterations and residual of every solve (debug)"),
+];
+
+/// Units with their SI base-unit exponents (kg, m, s, rad) and display units (name, factor).
+const UNITS: &[(&str, [i32; 4], &[(&str, f64)])] = &[
+    ("1", [0, 0, 0, 0], &[]),
+    ("m", [0, 1, 0, 0], &[]),
+    ("N", [1, 1, -2, 0], &[]),
+    ("N.m", [1, 2, -2, 0], &[]),
+    ("W", [1, 2, -3, 0], &[]),
+    ("rad", [0, 0, 0, 1], &[("deg", 57.295_779_513_082_32)]),
+    ("rad/s", [0, 0, -1, 1], &[("rpm", 9.549_296_585_513_72)]),
+    ("Pa.s", [1, -1, -1, 0], &[]),
+    ("1/Pa", [-1, 1, 2, 0], &[]),
+];
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// A real number as XML text that parses back to the same bits.
+fn real(v: f64) -> String {
+    format!("{v:?}")
+}
+
+/// Generate the model description for `bearing`. Returns (xml, guid).
+pub fn generate(bearing: &Bearing) -> (String, String) {
+    let body = render(bearing, "@GUID@");
+    let digest = Sha256::digest(body.as_bytes());
+    let h: Vec<String> = digest[..16].iter().map(|b| format!("{b:02x}")).collect();
+    let h = h.concat();
+    let guid = format!("{{{}-{}-{}-{}-{}}}", &h[0..8], &h[8..12], &h[12..16], &h[16..20], &h[20..32]);
+    (body.replace("@GUID@", &guid), guid)
+}
+
+/// Just the GUID of `bearing`'s model description.
+pub fn guid(bearing: &Bearing) -> String {
+    generate(bearing).1
+}
+
+fn render(bearing: &Bearing, guid: &str) -> String {
+    let z = bearing.roller_count;
+    let mut sim = Simulation::new(bearing.clone());
+    let mut x = String::new();
+    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        x,
+        r#"<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{guid}" description="{}" author="tapered-roller-bearing contributors" version="{}" generationTool="tapered-roller-bearing {}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+        xml_escape(&format!(
+            "Tapered roller bearing element (quasi-static and dynamic), bearing {}: {}",
+            bearing.name, bearing.description
+        )),
+        env!("CARGO_PKG_VERSION"),
+        env!("CARGO_PKG_VERSION"),
+    );
+    let _ = writeln!(
+        x,
+        r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="false" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#
+    );
+    let _ = writeln!(x, "  <UnitDefinitions>");
+    for (name, [kg, m, s, rad], displays) in UNITS {
+        let mut base = String::new();
+        for (sym, e) in [("kg", kg), ("m", m), ("s", s), ("rad", rad)] {
+            if *e != 0 {
+                let _ = write!(base, r#" {sym}="{e}""#);
+            }
+        }
+        if displays.is_empty() {
+            let _ = writeln!(x, r#"    <Unit name="{}"><BaseUnit{base}/></Unit>"#, xml_escape(name));
+        } else {
+            let _ = writeln!(x, r#"    <Unit name="{}">"#, xml_escape(name));
+            let _ = writeln!(x, r#"      <BaseUnit{base}/>"#);
+            for (d, f) in displays.iter() {
+                let _ = writeln!(x, r#"      <DisplayUnit name="{d}" factor="{}"/>"#, real(*f));
+            }
+            let _ = writeln!(x, "    </Unit>");
+        }
+    }
+    let _ = writeln!(x, "  </UnitDefinitions>");
+    let _ = writeln!(x, "  <LogCategories>");
+    for (name, desc) in LOG_CATEGORIES {
+        let _ = writeln!(x, r#"    <Category name="{name}" description="{}"/>"#, xml_escape(desc));
+    }
+    let _ = writeln!(x, "  </LogCategories>");
+    let _ = writeln!(x, r#"  <DefaultExperiment startTime="0.0" stopTime="0.1" stepSize="0.001"/>"#);
+    let _ = writeln!(x, "  <ModelVariables>");
+    let mut outputs = Vec::new();
+    for (index, (vr, name, row)) in variables::expanded(z).into_iter().enumerate() {
+        let j = if row.per_roller { (vr - row.vr) as usize + 1 } else { 0 };
+        let causality = match row.causality {
+            Causality::Parameter => "parameter",
+            Causality::Input => "input",
+            Causality::Output => "output",
+        };
+        let variability = match row.variability {
+            Variability::Fixed => "fixed",
+            Variability::Tunable => "tunable",
+            Variability::Discrete => "discrete",
+            Variability::Continuous => "continuous",
+        };
+        if row.causality == Causality::Output {
+            outputs.push(index + 1);
+        }
+        let _ = writeln!(
+            x,
+            r#"    <ScalarVariable name="{}" valueReference="{vr}" description="{}" causality="{causality}" variability="{variability}">"#,
+            xml_escape(&name),
+            xml_escape(&row.description_for(j))
+        );
+        let has_start = row.causality != Causality::Output;
+        let mut attrs = String::new();
+        match row.ty {
+            VarType::Real => {
+                if let Some(u) = row.unit {
+                    let _ = write!(attrs, r#" unit="{}""#, xml_escape(u));
+                }
+                if let Some(d) = row.display_unit {
+                    let _ = write!(attrs, r#" displayUnit="{d}""#);
+                }
+                if let Some(m) = row.min {
+                    let _ = write!(attrs, r#" min="{}""#, real(m));
+                }
+                if let Some(m) = row.max {
+                    let _ = write!(attrs, r#" max="{}""#, real(m));
+                }
+                if has_start {
+                    let v = sim.get_real(vr).expect("start value of a real variable");
+                    let _ = write!(attrs, r#" start="{}""#, real(v));
+                }
+                let _ = writeln!(x, "      <Real{attrs}/>");
+            }
+            VarType::Integer => {
+                if let Some(m) = row.min {
+                    let _ = write!(attrs, r#" min="{}""#, m as i64);
+                }
+                if let Some(m) = row.max {
+                    let _ = write!(attrs, r#" max="{}""#, m as i64);
+                }
+                if has_start {
+                    let v = sim.get_integer(vr).expect("start value of an integer variable");
+                    let _ = write!(attrs, r#" start="{v}""#);
+                }
+                let _ = writeln!(x, "      <Integer{attrs}/>");
+            }
+            VarType::Boolean => {
+                if has_start {
+                    let v = sim.get_boolean(vr).expect("start value of a boolean variable");
+                    let _ = write!(attrs, r#" start="{v}""#);
+                }
+                let _ = writeln!(x, "      <Boolean{attrs}/>");
+            }
+        }
+        let _ = writeln!(x, "    </ScalarVariable>");
+    }
+    let _ = writeln!(x, "  </ModelVariables>");
+    let _ = writeln!(x, "  <ModelStructure>");
+    let _ = writeln!(x, "    <Outputs>");
+    for i in &outputs {
+        let _ = writeln!(x, r#"      <Unknown index="{i}"/>"#);
+    }
+    let _ = writeln!(x, "    </Outputs>");
+    let _ = writeln!(x, "    <InitialUnknowns>");
+    for i in &outputs {
+        let _ = writeln!(x, r#"      <Unknown index="{i}"/>"#);
+    }
+    let _ = writeln!(x, "    </InitialUnknowns>");
+    let _ = writeln!(x, "  </ModelStructure>");
+    let _ = writeln!(x, "</fmiModelDescription>");
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guid_is_stable_and_depends_on_the_bearing() {
+        let a = Bearing::default_preset();
+        let (x1, g1) = generate(&a);
+        let (x2, g2) = generate(&a);
+        assert_eq!(x1, x2);
+        assert_eq!(g1, g2);
+        let b = Bearing::preset("32008").unwrap();
+        assert_ne!(guid(&b), g1);
+        assert!(x1.contains(&g1));
+    }
+
+    #[test]
+    fn every_table_row_appears_with_its_value_reference() {
+        let b = Bearing::default_preset();
+        let (xml, _) = generate(&b);
+        for (vr, name, _) in variables::expanded(b.roller_count) {
+            let needle = format!(r#"name="{}" valueReference="{vr}""#, xml_escape(&name));
+            assert!(xml.contains(&needle), "missing {needle}");
+        }
+        assert!(xml.contains(r#"name="roller[17].Nfs""#));
+        assert!(!xml.contains(r#"name="roller[18].Nfs""#));
+    }
+
+    #[test]
+    fn start_values_round_trip_exactly() {
+        let b = Bearing::default_preset();
+        let (xml, _) = generate(&b);
+        let mut sim = Simulation::new(b.clone());
+        let line = xml.lines().skip_while(|l| !l.contains(r#"name="speed""#)).nth(1).unwrap();
+        let start = line.split("start=\"").nth(1).unwrap().split('"').next().unwrap();
+        let v: f64 = start.parse().unwrap();
+        assert_eq!(v.to_bits(), sim.get_real(variables::SPEED).unwrap().to_bits());
+    }
+}

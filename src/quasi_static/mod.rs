@@ -1,0 +1,728 @@
+//! Quasi-static bearing model, fidelity 0 (MODEL.md section 6), after Harris / Andreason
+//! with the sliced contacts of [W25, D19, L22, Y22].
+//!
+//! Unknowns: cone translation (axial, two radial; the two tilts are imposed by the shaft
+//! deflection inputs and their reaction moments reported) and, per roller, its axial and
+//! radial displacement and tilt in its axial plane. Per roller: force and moment balance of
+//! the sliced cone and cup contacts, the flange (Hertz point contact), the centrifugal force
+//! (applied at the roller's centre of mass) and the gyroscopic moment of spin and orbit.
+//! Cone: equilibrium with the external forces (force preload) or prescribed axial
+//! displacement (displacement preload). Displacements are small against the geometry, so
+//! the interference of each contact is linear in the unknowns (exact Jacobian).
+//!
+//! Solver: Newton-Raphson on all 3 + 3Z unknowns at once, the block-arrowhead Jacobian
+//! solved by a Schur complement on the 3 cone unknowns (O(Z) per iteration), step clamping,
+//! and a damping factor halved while the residual grows [Y22]. Warm-started from the
+//! previous step; a cold start uses the rigid-ring estimate and falls back to load stepping.
+//! Rollers that touch nothing keep their position (the Jacobian is regularised, never the
+//! residual, so converged solutions are exact).
+
+mod friction;
+
+use crate::bearing::Bearing;
+use crate::geometry::Geometry;
+use crate::model::{Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use nalgebra::{Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
+use std::f64::consts::TAU;
+
+pub use friction::FrictionModel;
+
+/// Maximum Newton iterations of one solve.
+const MAX_ITERATIONS: u32 = 100;
+
+/// Evaluation of one roller at a trial point: residual, Jacobian blocks, loads.
+#[derive(Debug, Clone, Copy, Default)]
+struct RollerEval {
+    /// Scaled residual (F_x, F_r, M / L_s) of the roller.
+    r: Vector3<f64>,
+    /// d r / d (a, rho, theta L_s).
+    a: Matrix3<f64>,
+    /// d r / d (cone dx, cone dr).
+    b: Matrix3x2<f64>,
+    /// d f_cone / d (cone dx, cone dr).
+    d: nalgebra::Matrix2<f64>,
+    /// Force of the roller on the cone in the axial plane (x, r).
+    f_cone: Vector2<f64>,
+    /// In-plane moment about the bearing origin of the forces on the cone.
+    m_cone: f64,
+    qi: f64,
+    qo: f64,
+    qf: f64,
+    /// Tilt moments about the roller centre from cone, cup, flange.
+    nit: f64,
+    not: f64,
+    nft: f64,
+    extrapolated: bool,
+}
+
+/// Sums over the slices of one contact line (the normal is common to all slices).
+#[derive(Debug, Clone, Copy, Default)]
+struct LineSums {
+    q: f64,
+    q_lever: f64,
+    q_chi: f64,
+    k: f64,
+    k_lever: f64,
+    k_lever2: f64,
+    extrapolated: bool,
+}
+
+/// Per-solve constants of one roller.
+#[derive(Debug, Clone, Copy, Default)]
+struct RollerSetup {
+    cos_psi: f64,
+    sin_psi: f64,
+    /// Cone tilt in this roller's axial plane (rotation from x towards r).
+    gamma: f64,
+    gap_cone: f64,
+    gap_cup: f64,
+}
+
+/// The level-0 model of one bearing with one parameter set.
+#[derive(Debug, Clone)]
+pub struct QuasiStatic {
+    pub geometry: Geometry,
+    params: Parameters,
+    /// Tilt scale L_s = l/2: the solver's third roller unknown is theta * L_s (metres).
+    ls: f64,
+    /// cross(P, n) about the bearing origin per cone slice, and for the flange.
+    cone_chi: Vec<f64>,
+    flange_chi: f64,
+    /// Kinematic cage speed per unit cone speed (epicyclic, with the slip rate).
+    cage_ratio: f64,
+    /// Roller spin relative to the cage per unit cone speed (about the roller axis).
+    spin_ratio: f64,
+    setup: Vec<RollerSetup>,
+    evals: Vec<RollerEval>,
+    trial: Vec<f64>,
+    step: Vec<f64>,
+    cone_buf: Vec<f64>,
+    cup_buf: Vec<f64>,
+    friction: FrictionModel,
+    /// Largest Newton step of one roller or cone component (m).
+    max_step: f64,
+    /// Jacobian regularisation of roller blocks (N/m).
+    regularisation: f64,
+}
+
+impl QuasiStatic {
+    pub fn new(bearing: &Bearing, params: &Parameters) -> Result<QuasiStatic, ModelError> {
+        let geometry = Geometry::new(bearing, params);
+        let z = geometry.z;
+        let ls = 0.5 * geometry.length;
+        let cone_chi = geometry.cone.point.iter().map(|p| crate::geometry::cross(*p, geometry.cone.normal)).collect();
+        let flange_chi = geometry.flange.as_ref().map(|f| crate::geometry::cross(f.point, f.normal)).unwrap_or(0.0);
+        let (ri, ro) = geometry.pitch_contact_radii();
+        let cage_ratio = (1.0 - params.cage_slip_rate) * ri / (ri + ro);
+        // Outer-raceway control: pure rolling on the cup at mid-roller.
+        let spin_ratio = -cage_ratio * ro / geometry.mean_radius;
+        // Reference stiffness: whole roller at 1 um on one raceway.
+        let k_ref = {
+            let line = &geometry.cone;
+            let mid = geometry.slices / 2;
+            line.law.load(mid, 1e-6).1 * geometry.slices as f64
+        };
+        let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
+        let slices = geometry.slices;
+        Ok(QuasiStatic {
+            max_step: 1e-3 * 2.0 * geometry.mean_radius,
+            regularisation: 1e-9 * k_ref,
+            geometry,
+            params: params.clone(),
+            ls,
+            cone_chi,
+            flange_chi,
+            cage_ratio,
+            spin_ratio,
+            setup: vec![RollerSetup::default(); z],
+            evals: vec![RollerEval::default(); z],
+            trial: vec![0.0; 3 + 3 * z],
+            step: vec![0.0; 3 + 3 * z],
+            cone_buf: vec![0.0; slices],
+            cup_buf: vec![0.0; slices],
+            friction,
+        })
+    }
+
+    /// Cage angular speed for cone speed `speed` (epicyclic kinematics with slip).
+    pub fn cage_speed(&self, speed: f64) -> f64 {
+        self.cage_ratio * speed
+    }
+
+    /// Number of unknowns.
+    pub fn n_unknowns(&self) -> usize {
+        3 + 3 * self.geometry.z
+    }
+
+    fn prepare(&mut self, inputs: &Inputs, cage_angle: f64) {
+        let g = &self.geometry;
+        let p = &self.params;
+        let z = g.z;
+        let cos_h = g.half_angle.cos();
+        let cos_o = g.cup_angle.cos();
+        for j in 0..z {
+            let psi = cage_angle + TAU * j as f64 / z as f64;
+            let (s, c) = psi.sin_cos();
+            let lobe = if p.outer_lobes > 0 {
+                0.5 * p.outer_waveform * (1.0 - (p.outer_lobes as f64 * psi).cos())
+            } else {
+                0.0
+            };
+            let dd = 0.5 * p.roller_dd[j] * cos_h;
+            self.setup[j] = RollerSetup {
+                cos_psi: c,
+                sin_psi: s,
+                gamma: inputs.zeta * c - inputs.xi * s,
+                gap_cone: dd,
+                gap_cup: dd - (0.5 * p.clearance + lobe) * cos_o,
+            };
+        }
+    }
+
+    /// Centrifugal force (N, radial) and the moment the contacts must supply for the
+    /// gyroscopic turning of the spin axis (N m, in-plane), at cone speed `speed`.
+    fn inertial_loads(&self, speed: f64) -> (f64, f64, f64) {
+        let g = &self.geometry;
+        let wc = self.cage_ratio * speed;
+        let w = self.spin_ratio * speed;
+        let fc = if self.params.centrifugal {
+            g.roller_mass * wc * wc * (g.center[1] + g.cm_offset * g.axis[1])
+        } else {
+            0.0
+        };
+        // Moment of the centrifugal force about the roller centre (applied at the centre of mass).
+        let m_fc = g.cm_offset * g.axis[0] * fc;
+        let m_req = if self.params.gyroscopic {
+            let (sa, ca) = g.axis_angle.sin_cos();
+            // H = I_a (wc cos a + w) e + I_t wc (x - cos a e); d H / dt = wc x_hat cross H.
+            // x_hat cross e = -sin a e_t, so the in-plane component is:
+            -wc * sa * (g.inertia_axial * (wc * ca + w) - g.inertia_transverse * wc * ca)
+        } else {
+            0.0
+        };
+        (fc, m_fc, m_req)
+    }
+
+    #[inline]
+    fn line_sums(line: &crate::geometry::ContactLine, crown: &[f64], base: f64, theta: f64, ls: f64, chi: Option<&[f64]>, gamma: f64) -> LineSums {
+        let mut s = LineSums::default();
+        for k in 0..line.point.len() {
+            let lever = line.lever[k];
+            let mut delta = base - theta * lever - crown[k];
+            if let Some(chi) = chi {
+                delta += gamma * chi[k];
+            }
+            if delta <= 0.0 {
+                continue;
+            }
+            let (q, dq, ext) = line.law.load(k, delta);
+            let lv = lever / ls;
+            s.q += q;
+            s.q_lever += q * lever;
+            if let Some(chi) = chi {
+                s.q_chi += q * chi[k];
+            }
+            s.k += dq;
+            s.k_lever += dq * lv;
+            s.k_lever2 += dq * lv * lv;
+            s.extrapolated |= ext;
+        }
+        s
+    }
+
+    /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`.
+    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64) -> RollerEval {
+        let g = &self.geometry;
+        let st = &self.setup[j];
+        let ls = self.ls;
+        let theta = q[2] / ls;
+        let mut e = RollerEval::default();
+
+        // Cone: delta = (dx - a) n_x + (dr - rho) n_r + gamma chi - theta lever + gap - crown
+        let ni = g.cone.normal;
+        let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
+        let si = Self::line_sums(&g.cone, &g.crown, base_i, theta, ls, Some(&self.cone_chi), st.gamma);
+        // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
+        let no = g.cup.normal;
+        let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
+        let so = Self::line_sums(&g.cup, &g.crown, base_o, theta, ls, None, 0.0);
+
+        let add_line = |e: &mut RollerEval, n: [f64; 2], s: &LineSums, on_cone: bool| {
+            let nv = Vector3::new(n[0], n[1], 0.0);
+            e.r += nv * s.q + Vector3::new(0.0, 0.0, s.q_lever / ls);
+            // A -= sum k g g^T, g = (n_x, n_r, lever/L_s)
+            let mut a = nv * nv.transpose() * s.k;
+            a[(0, 2)] = n[0] * s.k_lever;
+            a[(1, 2)] = n[1] * s.k_lever;
+            a[(2, 0)] = a[(0, 2)];
+            a[(2, 1)] = a[(1, 2)];
+            a[(2, 2)] = s.k_lever2;
+            e.a -= a;
+            e.extrapolated |= s.extrapolated;
+            if on_cone {
+                // B = sum k g n^T ; D = -sum k n n^T ; f_cone = -sum q n
+                let n2 = Vector2::new(n[0], n[1]);
+                let gk = Vector3::new(n[0] * s.k, n[1] * s.k, s.k_lever);
+                e.b += gk * n2.transpose();
+                e.d -= n2 * n2.transpose() * s.k;
+                e.f_cone -= n2 * s.q;
+                e.m_cone -= s.q_chi;
+            }
+        };
+        add_line(&mut e, ni, &si, true);
+        add_line(&mut e, no, &so, false);
+        e.qi = si.q;
+        e.qo = so.q;
+        e.nit = si.q_lever;
+        e.not = so.q_lever;
+
+        if let Some(f) = &g.flange {
+            let n = f.normal;
+            let delta = (cone[0] - q[0]) * n[0] + (cone[1] - q[1]) * n[1] + st.gamma * self.flange_chi - theta * f.lever;
+            let (qf, kf) = f.hertz.load(delta);
+            if qf > 0.0 {
+                let lv = f.lever / ls;
+                let gv = Vector3::new(n[0], n[1], lv);
+                e.r += gv * qf;
+                e.a -= gv * gv.transpose() * kf;
+                let n2 = Vector2::new(n[0], n[1]);
+                e.b += gv * n2.transpose() * kf;
+                e.d -= n2 * n2.transpose() * kf;
+                e.f_cone -= n2 * qf;
+                e.m_cone -= qf * self.flange_chi;
+                e.qf = qf;
+                e.nft = qf * f.lever;
+            }
+        }
+        // Centrifugal force (radial) and gyroscopic moment.
+        e.r[1] += fc;
+        e.r[2] += (m_fc - m_req) / ls;
+        if !g.axial {
+            // Cylindrical bearing: no axial stiffness, the axial unknown is held at zero.
+            e.r[0] = 0.0;
+            e.a.set_row(0, &Vector3::zeros().transpose());
+            e.a.set_column(0, &Vector3::zeros());
+            e.b.set_row(0, &nalgebra::RowVector2::zeros());
+        }
+        e
+    }
+
+    /// Evaluate every roller at `x`; returns the scaled residual max-norm, the merit
+    /// (sum of squares) and the reference force.
+    fn evaluate(&mut self, x: &[f64], inputs: &Inputs, fc: f64, m_fc: f64, m_req: f64) -> (f64, f64, f64, Vector3<f64>) {
+        let z = self.geometry.z;
+        let mut ring = Vector3::new(inputs.fx, inputs.fy, inputs.fz);
+        let mut max_r: f64 = 0.0;
+        let mut merit = 0.0;
+        let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
+        for j in 0..z {
+            let st = self.setup[j];
+            let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
+            let q = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
+            let e = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req);
+            ring[0] += e.f_cone[0];
+            ring[1] += e.f_cone[1] * st.cos_psi;
+            ring[2] += e.f_cone[1] * st.sin_psi;
+            for c in 0..3 {
+                let v = e.r[c];
+                // NaN must never pass for convergence: it makes the residual infinite.
+                max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+                merit += v * v;
+            }
+            f_ref = f_ref.max(e.qi).max(e.qo);
+            self.evals[j] = e;
+        }
+        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
+        if fixed_axial {
+            ring[0] = 0.0;
+        }
+        for c in 0..3 {
+            let v = ring[c];
+            max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+            merit += v * v;
+        }
+        if !merit.is_finite() {
+            merit = f64::INFINITY;
+        }
+        (max_r, merit, f_ref, ring)
+    }
+
+    /// Newton step for the current evaluations and ring residual.
+    fn newton_step(&mut self, ring: &Vector3<f64>) -> bool {
+        let z = self.geometry.z;
+        let reg = Matrix3::identity() * self.regularisation;
+        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
+        let mut schur = Matrix3::<f64>::zeros();
+        let mut rhs = -ring;
+        // Accumulate D and Schur terms. Global cone unknowns c = (dx, dy, dz); local (dx, dr) = T c.
+        for j in 0..z {
+            let st = self.setup[j];
+            let t = Matrix2x3::new(1.0, 0.0, 0.0, 0.0, st.cos_psi, st.sin_psi);
+            let e = self.evals[j];
+            let mut a = e.a - reg;
+            if !self.geometry.axial {
+                a[(0, 0)] = -1.0;
+            }
+            let a_inv = match a.try_inverse() {
+                Some(m) => m,
+                None => return false,
+            };
+            let b = e.b * t; // 3x3: d r_j / d c
+            let c = t.transpose() * e.b.transpose(); // d ring / d q_j  (J_cr = J_rc^T)
+            let d = t.transpose() * e.d * t;
+            schur += d - c * a_inv * b;
+            rhs += c * a_inv * e.r;
+            // store A^{-1} and B for back substitution in place of the blocks
+            self.evals[j].a = a_inv;
+            self.evals[j].b = e.b;
+        }
+        // A cone that touches no roller has no stiffness: regularise like the rollers.
+        schur -= Matrix3::identity() * (self.regularisation * z as f64);
+        if fixed_axial {
+            schur.set_row(0, &Vector3::new(1.0, 0.0, 0.0).transpose());
+            schur.set_column(0, &Vector3::new(1.0, 0.0, 0.0));
+            rhs[0] = 0.0;
+        }
+        let dc = match schur.try_inverse() {
+            Some(s) => s * rhs,
+            None => return false,
+        };
+        self.step[0] = dc[0];
+        self.step[1] = dc[1];
+        self.step[2] = dc[2];
+        for j in 0..z {
+            let st = self.setup[j];
+            let t = Matrix2x3::new(1.0, 0.0, 0.0, 0.0, st.cos_psi, st.sin_psi);
+            let e = &self.evals[j];
+            let dq = e.a * (-e.r - e.b * (t * dc));
+            for c in 0..3 {
+                self.step[3 + 3 * j + c] = dq[c];
+            }
+            if !self.geometry.axial {
+                self.step[3 + 3 * j] = 0.0;
+            }
+        }
+        // Clamp: no component moves more than max_step in one iteration.
+        let largest = self.step.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
+        if !largest.is_finite() {
+            return false;
+        }
+        if largest > self.max_step {
+            let f = self.max_step / largest;
+            self.step.iter_mut().for_each(|s| *s *= f);
+        }
+        true
+    }
+
+    /// Rigid-ring start values: every roller carries the axial load share (or the
+    /// displacement preload is met), placed to meet cone, cup and flange.
+    fn initial_guess(&self, x: &mut [f64], inputs: &Inputs, fc: f64, load_scale: f64) {
+        let g = &self.geometry;
+        let z = g.z;
+        x.iter_mut().for_each(|v| *v = 0.0);
+        let ni = g.cone.normal;
+        let no = g.cup.normal;
+        let mid = g.slices / 2;
+        let s = g.slices as f64;
+        let place = |fa: f64| -> Option<[f64; 3]> {
+            // Roller loads from 2-D force balance with cup load Qo = fa / (Z sin a_o).
+            let f = g.flange.as_ref()?;
+            let qo = fa / (z as f64 * (-no[0]).max(1e-6));
+            // Qi ni + Qf nf + Qo no + fc e_r = 0
+            let nf = f.normal;
+            let m = nalgebra::Matrix2::new(ni[0], nf[0], ni[1], nf[1]);
+            let rhs = Vector2::new(-qo * no[0], -qo * no[1] - fc);
+            let sol = m.try_inverse()? * rhs;
+            let (qi, qf) = (sol[0].max(0.0), sol[1].max(0.0));
+            let di = g.cone.law.deflection(mid, qi / s);
+            let dol = g.cup.law.deflection(mid, qo / s);
+            let dfl = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
+            // dol = -(a no_x + rho no_r); di = (dx - a) ni_x - rho ni_r; dfl = (dx - a) nf_x - rho nf_r
+            let mm = Matrix3::new(-no[0], -no[1], 0.0, -ni[0], -ni[1], ni[0], -nf[0], -nf[1], nf[0]);
+            let v = mm.try_inverse()? * Vector3::new(dol, di, dfl);
+            Some([v[0], v[1], v[2]])
+        };
+        if g.axial {
+            let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
+            let tan_o = g.cup_angle.tan();
+            let sol = match self.params.preload {
+                Preload::Force => {
+                    let fa = (inputs.fx.max(0.0) + 0.0 * fr).max(1.2 * fr * tan_o).max(1.0) * load_scale;
+                    place(fa)
+                }
+                Preload::Displacement => {
+                    // Bisect the axial load giving the prescribed axial displacement.
+                    let target = inputs.axial_displacement;
+                    if target <= 0.0 {
+                        None
+                    } else {
+                        let (mut lo, mut hi) = (1e-3_f64, 1e8_f64);
+                        for _ in 0..80 {
+                            let m = (lo * hi).sqrt();
+                            match place(m) {
+                                Some(v) if v[2] > target => hi = m,
+                                _ => lo = m,
+                            }
+                        }
+                        place((lo * hi).sqrt())
+                    }
+                }
+            };
+            if let Some([a, rho, dx]) = sol {
+                x[0] = if self.params.preload == Preload::Displacement { inputs.axial_displacement } else { dx };
+                for j in 0..z {
+                    x[3 + 3 * j] = a;
+                    x[4 + 3 * j] = rho;
+                }
+            } else if self.params.preload == Preload::Displacement {
+                x[0] = inputs.axial_displacement;
+            }
+        } else {
+            // Cylindrical: rollers sit on the cup under their centrifugal force.
+            let dol = g.cup.law.deflection(mid, fc.max(0.0) / s);
+            for j in 0..z {
+                x[4 + 3 * j] = dol;
+            }
+        }
+    }
+
+    /// Solve the equilibrium for `inputs` with roller 1 at `cage_angle`. `warm` holds the
+    /// unknowns of the previous solve (replaced by the solution); `out` receives everything.
+    pub fn solve(&mut self, inputs: &Inputs, cage_angle: f64, warm: &mut Vec<f64>, out: &mut Outputs) -> Result<SolveReport, ModelError> {
+        self.prepare(inputs, cage_angle);
+        let n = self.n_unknowns();
+        let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
+        let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
+
+        let cold = warm.len() != n;
+        if cold {
+            warm.resize(n, 0.0);
+        }
+        let mut x = std::mem::take(warm);
+        let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
+            (false, _) => Some(0.0),
+            (true, Preload::Displacement) => Some(inputs.axial_displacement),
+            _ => None,
+        };
+        let result = if cold {
+            self.initial_guess(&mut x, inputs, fc, 1.0);
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, fixed_axial_value)
+        } else {
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, fixed_axial_value)
+        };
+        let report = match result {
+            Ok(r) => r,
+            Err(first) => {
+                // Load stepping from a fresh start: 10 %, 20 %, ... of the loads.
+                let mut ok = None;
+                let mut xs = x.clone();
+                self.initial_guess(&mut xs, inputs, fc, 0.1);
+                let mut stepped = *inputs;
+                let mut total_iters = 0;
+                for stage in 1..=10 {
+                    let f = stage as f64 / 10.0;
+                    stepped.fx = inputs.fx * f;
+                    stepped.fy = inputs.fy * f;
+                    stepped.fz = inputs.fz * f;
+                    stepped.axial_displacement = inputs.axial_displacement * f;
+                    let fav = fixed_axial_value.map(|v| v * f);
+                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, fav) {
+                        Ok(r) => {
+                            total_iters += r.iterations;
+                            if stage == 10 {
+                                ok = Some(SolveReport { iterations: total_iters, ..r });
+                            }
+                        }
+                        Err(_) => break,
+                    }
+                }
+                match ok {
+                    Some(r) => {
+                        x = xs;
+                        r
+                    }
+                    None => {
+                        *warm = Vec::new();
+                        return Err(first);
+                    }
+                }
+            }
+        };
+        self.write_outputs(&x, inputs, report, out);
+        *warm = x;
+        Ok(report)
+    }
+
+    fn newton(
+        &mut self,
+        x: &mut [f64],
+        inputs: &Inputs,
+        fc: f64,
+        m_fc: f64,
+        m_req: f64,
+        tol: f64,
+        fixed_axial: Option<f64>,
+    ) -> Result<SolveReport, ModelError> {
+        if let Some(v) = fixed_axial {
+            x[0] = v;
+        }
+        if !self.geometry.axial {
+            for j in 0..self.geometry.z {
+                x[3 + 3 * j] = 0.0;
+            }
+        }
+        let (mut max_r, mut merit, mut f_ref, mut ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
+        let mut iterations = 0;
+        let mut extrapolated = self.evals.iter().any(|e| e.extrapolated);
+        let limit = 0.05 * 2.0 * self.geometry.mean_radius;
+        loop {
+            if max_r <= tol * f_ref {
+                return Ok(SolveReport { iterations, residual: max_r / f_ref, contact_law_extrapolated: extrapolated });
+            }
+            if iterations >= MAX_ITERATIONS {
+                break;
+            }
+            iterations += 1;
+            if !self.newton_step(&ring) {
+                break;
+            }
+            // Damped update: halve the step while the residual grows.
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            let mut trial = std::mem::take(&mut self.trial);
+            for _ in 0..12 {
+                for i in 0..x.len() {
+                    trial[i] = x[i] + alpha * self.step[i];
+                }
+                let (mr, me, fr, rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
+                if me < merit || alpha < 1e-3 {
+                    x.copy_from_slice(&trial);
+                    max_r = mr;
+                    merit = me;
+                    f_ref = fr;
+                    ring = rg;
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            self.trial = trial;
+            if !accepted {
+                break;
+            }
+            extrapolated = self.evals.iter().any(|e| e.extrapolated);
+            let stalled = self.step.iter().zip(x.iter()).all(|(s, v)| (alpha * s).abs() <= 1e-15 * v.abs().max(1e-12));
+            if x.iter().any(|v| !v.is_finite() || v.abs() > limit) {
+                break;
+            }
+            if stalled && max_r <= 1e3 * tol * f_ref {
+                return Ok(SolveReport { iterations, residual: max_r / f_ref, contact_law_extrapolated: extrapolated });
+            }
+        }
+        Err(self.explain_failure(x, inputs, max_r / f_ref, iterations))
+    }
+
+    fn explain_failure(&self, x: &[f64], inputs: &Inputs, residual: f64, iterations: u32) -> ModelError {
+        let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
+        let g = &self.geometry;
+        let limit = 0.05 * 2.0 * g.mean_radius;
+        let runaway = x.iter().any(|v| !v.is_finite() || v.abs() > limit);
+        let mut message = format!(
+            "Newton solver stopped after {iterations} iterations with relative residual {residual:.3e} (Fx = {:.6} N, Fr = {:.6} N, speed = {:.6} rad/s)",
+            inputs.fx, fr, inputs.speed
+        );
+        if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.5 * fr * g.cup_angle.tan() {
+            message.push_str(&format!(
+                "; a single tapered roller bearing needs an axial force of the order of Fr tan(cup angle) = {:.1} N to carry a radial load, and Fx = {:.1} N does not seat it",
+                fr * g.cup_angle.tan(),
+                inputs.fx
+            ));
+        } else if runaway {
+            message.push_str(&format!(
+                "; displacements exceeded {:.3e} m (5 % of the roller diameter): the load is beyond the model's range",
+                limit
+            ));
+        }
+        if g.axial && self.params.preload == Preload::Displacement && inputs.axial_displacement <= 0.0 && fr > 0.0 {
+            message.push_str("; with axial displacement preload <= 0 the cone is not seated");
+        }
+        ModelError::NoEquilibrium { message }
+    }
+
+    fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
+        let z = self.geometry.z;
+        let mut my = 0.0;
+        let mut mz = 0.0;
+        let mut fx = 0.0;
+        for j in 0..z {
+            let e = &self.evals[j];
+            let st = &self.setup[j];
+            // Reaction: moment the shaft applies = -(moment of roller forces on the cone).
+            my += st.sin_psi * e.m_cone;
+            mz -= st.cos_psi * e.m_cone;
+            fx -= e.f_cone[0];
+            out.qi[j] = e.qi;
+            out.qo[j] = e.qo;
+            out.qf[j] = e.qf;
+            out.qc[j] = 0.0;
+            out.tilt[j] = x[5 + 3 * j] / self.ls;
+            out.skew[j] = 0.0;
+            out.nit[j] = e.nit;
+            out.not[j] = e.not;
+            out.nft[j] = e.nft;
+        }
+        out.cone_x = x[0];
+        out.cone_y = x[1];
+        out.cone_z = x[2];
+        out.reaction_fx = if self.geometry.axial { fx } else { 0.0 };
+        out.reaction_my = my;
+        out.reaction_mz = mz;
+        out.cage_speed = self.cage_speed(inputs.speed);
+        out.solver_iterations = report.iterations as i32;
+        out.solver_residual = report.residual;
+        // Friction torque, power loss and the skew moments of the traction forces.
+        let lubrication = self.params.lubrication;
+        let mut cone = std::mem::take(&mut self.cone_buf);
+        let mut cup = std::mem::take(&mut self.cup_buf);
+        let torque = self.friction.evaluate(self, x, inputs, lubrication, out, &mut cone, &mut cup);
+        self.cone_buf = cone;
+        self.cup_buf = cup;
+        out.friction_torque_raceway = torque.raceway;
+        out.friction_torque_flange = torque.flange;
+        out.friction_torque_cage = 0.0;
+        out.friction_torque = torque.raceway + torque.flange;
+        out.power_loss = out.friction_torque * inputs.speed;
+        out.summarize();
+    }
+
+    /// Slice loads of roller `j` at the solution `x` (cone, cup), for the friction model and tests.
+    pub fn slice_loads(&self, x: &[f64], j: usize, cone: &mut [f64], cup: &mut [f64]) {
+        let g = &self.geometry;
+        let st = &self.setup[j];
+        let theta = x[5 + 3 * j] / self.ls;
+        let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
+        let (a, rho) = (x[3 + 3 * j], x[4 + 3 * j]);
+        let ni = g.cone.normal;
+        let no = g.cup.normal;
+        let base_i = (x[0] - a) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
+        let base_o = -(a * no[0] + rho * no[1]) + st.gap_cup;
+        for k in 0..g.slices {
+            let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - g.crown[k];
+            cone[k] = g.cone.law.load(k, di).0;
+            let d_o = base_o - theta * g.cup.lever[k] - g.crown[k];
+            cup[k] = g.cup.law.load(k, d_o).0;
+        }
+    }
+
+    /// Flange load of roller `j` (already in the evaluation).
+    fn flange_load(&self, j: usize) -> f64 {
+        self.evals[j].qf
+    }
+
+    pub fn lubrication(&self) -> Lubrication {
+        self.params.lubrication
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,486 @@
+//! One running bearing element: parameters, inputs, outputs, time and the model state, with
+//! access by value reference. The FMI adapter and the standalone `simulate` command both
+//! drive this type with the same calls, so their results agree bit for bit.
+//!
+//! Semantics (co-simulation, sample and hold):
+//! - `do_step(t, h)` advances the cage (and roller azimuths) over `[t, t+h]` with the inputs
+//!   held at their current values, then solves the element at `t + h`.
+//! - Outputs are algebraic in the inputs at fidelity 0: reading an output after an input
+//!   changed re-solves first (direct feedthrough), so `set inputs -> get outputs` is always
+//!   consistent.
+
+use crate::bearing::Bearing;
+use crate::model::{Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use crate::quasi_static::QuasiStatic;
+use crate::variables::{self as var, Causality};
+use bincode::Options as _;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Why a variable access was refused.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AccessError {
+    /// No variable of this type has that value reference.
+    UnknownReference(u32),
+    /// The variable exists but may not be set (an output).
+    NotSettable(u32),
+    /// The value is not allowed for this variable (e.g. enumeration out of range).
+    BadValue { vr: u32, message: String },
+    /// Reading required a solve that failed.
+    Model(ModelError),
+}
+
+impl fmt::Display for AccessError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AccessError::UnknownReference(vr) => write!(f, "unknown value reference {vr}"),
+            AccessError::NotSettable(vr) => write!(f, "variable with value reference {vr} cannot be set"),
+            AccessError::BadValue { vr, message } => write!(f, "value reference {vr}: {message}"),
+            AccessError::Model(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for AccessError {}
+
+/// The physics of the chosen fidelity.
+#[derive(Debug, Clone)]
+enum Model {
+    QuasiStatic(Box<QuasiStatic>),
+}
+
+/// The serializable part of a simulation (everything but derived data).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct State {
+    params: Parameters,
+    inputs: Inputs,
+    outputs: Outputs,
+    time: f64,
+    cage_angle: f64,
+    /// Inputs or parameters changed since the outputs were computed.
+    dirty: bool,
+    /// Warm start of the quasi-static solver (empty before the first solve).
+    warm_start: Vec<f64>,
+    report: SolveReport,
+}
+
+/// A bearing element ready to be parameterised, initialised and stepped.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    bearing: Bearing,
+    state: State,
+    model: Option<Model>,
+}
+
+/// Magic and version of the serialized state format.
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT1";
+
+impl Simulation {
+    /// A new element for `bearing`, parameters and inputs at the bearing's defaults.
+    pub fn new(bearing: Bearing) -> Simulation {
+        let z = bearing.roller_count;
+        let params = Parameters::from_bearing(&bearing);
+        let inputs = Inputs::from_bearing(&bearing);
+        let cage_angle = params.cage_angle0;
+        let mut outputs = Outputs::new(z);
+        for j in 0..z {
+            outputs.azimuth[j] = roller_azimuth(cage_angle, j, z);
+        }
+        Simulation {
+            bearing,
+            state: State {
+                params,
+                inputs,
+                outputs,
+                time: 0.0,
+                cage_angle,
+                dirty: true,
+                warm_start: Vec::new(),
+                report: SolveReport::default(),
+            },
+            model: None,
+        }
+    }
+
+    pub fn bearing(&self) -> &Bearing {
+        &self.bearing
+    }
+    pub fn n_rollers(&self) -> usize {
+        self.bearing.roller_count
+    }
+    pub fn params(&self) -> &Parameters {
+        &self.state.params
+    }
+    pub fn inputs(&self) -> &Inputs {
+        &self.state.inputs
+    }
+    pub fn time(&self) -> f64 {
+        self.state.time
+    }
+    pub fn last_report(&self) -> SolveReport {
+        self.state.report
+    }
+
+    /// Back to the state right after `new` (fmi2Reset).
+    pub fn reset(&mut self) {
+        *self = Simulation::new(self.bearing.clone());
+    }
+
+    /// Check parameters and inputs, build the model, and solve at `start_time`
+    /// (fmi2ExitInitializationMode).
+    pub fn initialize(&mut self, start_time: f64) -> Result<SolveReport, ModelError> {
+        self.state.time = start_time;
+        self.state.cage_angle = self.state.params.cage_angle0;
+        self.state.dirty = true;
+        self.model = None;
+        self.solve_if_dirty()
+    }
+
+    /// Advance from `t` to `t + h` with the inputs held, then solve at `t + h`.
+    /// The caller (FMI adapter) checks that `t` matches the current time.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
+        self.state.inputs.validate(&self.bearing)?;
+        self.ensure_model()?;
+        let cage_speed = match self.model.as_ref().expect("model built") {
+            Model::QuasiStatic(m) => m.cage_speed(self.state.inputs.speed),
+        };
+        self.state.cage_angle = wrap_angle(self.state.cage_angle + cage_speed * h);
+        self.state.time = t + h;
+        self.state.dirty = true;
+        self.solve_if_dirty()
+    }
+
+    /// Outputs now, solving first if inputs changed.
+    pub fn outputs(&mut self) -> Result<&Outputs, ModelError> {
+        self.solve_if_dirty()?;
+        Ok(&self.state.outputs)
+    }
+
+    /// The outputs of the last successful solve, without solving.
+    pub fn last_outputs(&self) -> &Outputs {
+        &self.state.outputs
+    }
+
+    fn ensure_model(&mut self) -> Result<(), ModelError> {
+        if self.model.is_none() {
+            self.state.params.validate(&self.bearing)?;
+            let qs = QuasiStatic::new(&self.bearing, &self.state.params)?;
+            self.model = Some(Model::QuasiStatic(Box::new(qs)));
+        }
+        Ok(())
+    }
+
+    fn solve_if_dirty(&mut self) -> Result<SolveReport, ModelError> {
+        if !self.state.dirty {
+            return Ok(self.state.report);
+        }
+        self.state.inputs.validate(&self.bearing)?;
+        self.ensure_model()?;
+        let z = self.bearing.roller_count;
+        let st = &mut self.state;
+        let report = match self.model.as_mut().expect("model built") {
+            Model::QuasiStatic(m) => m.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?,
+        };
+        for j in 0..z {
+            st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
+        }
+        st.report = report;
+        st.dirty = false;
+        Ok(report)
+    }
+
+    fn parameter_changed(&mut self) {
+        self.model = None;
+        self.state.warm_start.clear();
+        self.state.dirty = true;
+    }
+
+    // ---------------------------------------------------------------------------------
+    // Access by value reference
+    // ---------------------------------------------------------------------------------
+
+    /// The causality of value reference `vr`, if it exists.
+    pub fn causality(&self, vr: u32) -> Option<Causality> {
+        var::lookup(vr, self.n_rollers()).map(|(v, _)| v.causality)
+    }
+
+    pub fn get_real(&mut self, vr: u32) -> Result<f64, AccessError> {
+        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Real {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        if row.causality == Causality::Output {
+            self.solve_if_dirty().map_err(AccessError::Model)?;
+        }
+        let p = &self.state.params;
+        let i = &self.state.inputs;
+        let o = &self.state.outputs;
+        Ok(match row.vr {
+            var::TOLERANCE => p.tolerance,
+            var::MU => p.mu,
+            var::CAGE_POCKET_CLEARANCE => p.pocket_clearance,
+            var::OIL_ETA0 => p.eta0,
+            var::OIL_ALPHA => p.alpha,
+            var::ROUGHNESS => p.roughness,
+            var::CLEARANCE => p.clearance,
+            var::OUTER_WAVEFORM => p.outer_waveform,
+            var::CAGE_SLIP_RATE => p.cage_slip_rate,
+            var::CAGE_ANGLE0 => p.cage_angle0,
+            var::ROLLER_CROWN_DROP => p.crown_drop,
+            var::FLANGE_MU0 => p.flange_mu0,
+            var::ROLLER_D_D => p.roller_dd[j],
+            var::SPEED => i.speed,
+            var::XI => i.xi,
+            var::ZETA => i.zeta,
+            var::FX => i.fx,
+            var::FY => i.fy,
+            var::FZ => i.fz,
+            var::AXIAL_DISPLACEMENT => i.axial_displacement,
+            var::FRICTION_TORQUE => o.friction_torque,
+            var::FRICTION_TORQUE_RACEWAY => o.friction_torque_raceway,
+            var::FRICTION_TORQUE_FLANGE => o.friction_torque_flange,
+            var::FRICTION_TORQUE_CAGE => o.friction_torque_cage,
+            var::POWER_LOSS => o.power_loss,
+            var::CONE_X => o.cone_x,
+            var::CONE_Y => o.cone_y,
+            var::CONE_Z => o.cone_z,
+            var::REACTION_FX => o.reaction_fx,
+            var::REACTION_MY => o.reaction_my,
+            var::REACTION_MZ => o.reaction_mz,
+            var::TILT_MAX => o.tilt_max,
+            var::TILT_MEAN => o.tilt_mean,
+            var::SKEW_MAX => o.skew_max,
+            var::SKEW_MEAN => o.skew_mean,
+            var::QI_MAX => o.qi_max,
+            var::QO_MAX => o.qo_max,
+            var::QF_MAX => o.qf_max,
+            var::CAGE_SPEED => o.cage_speed,
+            var::SOLVER_RESIDUAL => o.solver_residual,
+            var::ROLLER_TILT => o.tilt[j],
+            var::ROLLER_SKEW => o.skew[j],
+            var::ROLLER_QI => o.qi[j],
+            var::ROLLER_QO => o.qo[j],
+            var::ROLLER_QF => o.qf[j],
+            var::ROLLER_QC => o.qc[j],
+            var::ROLLER_AZIMUTH => o.azimuth[j],
+            var::ROLLER_NIT => o.nit[j],
+            var::ROLLER_NOT => o.not[j],
+            var::ROLLER_NFT => o.nft[j],
+            var::ROLLER_NIS => o.nis[j],
+            var::ROLLER_NOS => o.nos[j],
+            var::ROLLER_NFS => o.nfs[j],
+            _ => return Err(AccessError::UnknownReference(vr)),
+        })
+    }
+
+    /// Set a Real parameter or input. NaN/inf inputs are stored and rejected by the next
+    /// step or solve (with the input named); NaN/inf parameters are rejected here.
+    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), AccessError> {
+        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Real {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        match row.causality {
+            Causality::Output => return Err(AccessError::NotSettable(vr)),
+            Causality::Parameter => {
+                if !value.is_finite() {
+                    return Err(AccessError::BadValue { vr, message: format!("{} must be finite, got {value}", row.name_for(j + 1)) });
+                }
+            }
+            Causality::Input => {}
+        }
+        let p = &mut self.state.params;
+        let i = &mut self.state.inputs;
+        let slot: &mut f64 = match row.vr {
+            var::TOLERANCE => &mut p.tolerance,
+            var::MU => &mut p.mu,
+            var::CAGE_POCKET_CLEARANCE => &mut p.pocket_clearance,
+            var::OIL_ETA0 => &mut p.eta0,
+            var::OIL_ALPHA => &mut p.alpha,
+            var::ROUGHNESS => &mut p.roughness,
+            var::CLEARANCE => &mut p.clearance,
+            var::OUTER_WAVEFORM => &mut p.outer_waveform,
+            var::CAGE_SLIP_RATE => &mut p.cage_slip_rate,
+            var::CAGE_ANGLE0 => &mut p.cage_angle0,
+            var::ROLLER_CROWN_DROP => &mut p.crown_drop,
+            var::FLANGE_MU0 => &mut p.flange_mu0,
+            var::ROLLER_D_D => &mut p.roller_dd[j],
+            var::SPEED => &mut i.speed,
+            var::XI => &mut i.xi,
+            var::ZETA => &mut i.zeta,
+            var::FX => &mut i.fx,
+            var::FY => &mut i.fy,
+            var::FZ => &mut i.fz,
+            var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
+            _ => return Err(AccessError::UnknownReference(vr)),
+        };
+        if slot.to_bits() != value.to_bits() {
+            *slot = value;
+            if row.causality == Causality::Parameter {
+                self.parameter_changed();
+            } else {
+                self.state.dirty = true;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn get_integer(&mut self, vr: u32) -> Result<i32, AccessError> {
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Integer {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        if row.causality == Causality::Output {
+            self.solve_if_dirty().map_err(AccessError::Model)?;
+        }
+        let p = &self.state.params;
+        Ok(match row.vr {
+            var::FIDELITY => p.fidelity as i32,
+            var::LUBRICATION => p.lubrication as i32,
+            var::PRELOAD => p.preload as i32,
+            var::SLICES => p.slices as i32,
+            var::OUTER_LOBES => p.outer_lobes as i32,
+            var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
+            var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
+            _ => return Err(AccessError::UnknownReference(vr)),
+        })
+    }
+
+    pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), AccessError> {
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Integer {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        if row.causality == Causality::Output {
+            return Err(AccessError::NotSettable(vr));
+        }
+        let (lo, hi) = (row.min.unwrap_or(i32::MIN as f64), row.max.unwrap_or(i32::MAX as f64));
+        if (value as f64) < lo || (value as f64) > hi {
+            return Err(AccessError::BadValue { vr, message: format!("{} must be in [{lo}, {hi}], got {value}", row.name) });
+        }
+        let p = &mut self.state.params;
+        let old = p.clone();
+        match row.vr {
+            var::FIDELITY => p.fidelity = if value == 0 { Fidelity::QuasiStatic } else { Fidelity::Dynamic },
+            var::LUBRICATION => p.lubrication = if value == 0 { Lubrication::Ehl } else { Lubrication::Dry },
+            var::PRELOAD => p.preload = if value == 0 { Preload::Force } else { Preload::Displacement },
+            var::SLICES => p.slices = value as usize,
+            var::OUTER_LOBES => p.outer_lobes = value as u32,
+            _ => return Err(AccessError::UnknownReference(vr)),
+        }
+        if *p != old {
+            self.parameter_changed();
+        }
+        Ok(())
+    }
+
+    pub fn get_boolean(&mut self, vr: u32) -> Result<bool, AccessError> {
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Boolean {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        let p = &self.state.params;
+        Ok(match row.vr {
+            var::SKEW_MODEL => p.skew_model,
+            var::GYROSCOPIC => p.gyroscopic,
+            var::CENTRIFUGAL => p.centrifugal,
+            _ => return Err(AccessError::UnknownReference(vr)),
+        })
+    }
+
+    pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), AccessError> {
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if row.ty != var::VarType::Boolean {
+            return Err(AccessError::UnknownReference(vr));
+        }
+        if row.causality == Causality::Output {
+            return Err(AccessError::NotSettable(vr));
+        }
+        let p = &mut self.state.params;
+        let slot = match row.vr {
+            var::SKEW_MODEL => &mut p.skew_model,
+            var::GYROSCOPIC => &mut p.gyroscopic,
+            var::CENTRIFUGAL => &mut p.centrifugal,
+            _ => return Err(AccessError::UnknownReference(vr)),
+        };
+        if *slot != value {
+            *slot = value;
+            self.parameter_changed();
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------------------------
+    // FMU state
+    // ---------------------------------------------------------------------------------
+
+    /// Serialize the full state (bitwise exact round trip).
+    pub fn serialize_state(&self) -> Vec<u8> {
+        let mut out = STATE_MAGIC.to_vec();
+        let body = state_codec()
+            .serialize(&SerializedState { bearing: &self.bearing.name, z: self.n_rollers(), state: &self.state })
+            .expect("state serializes");
+        out.extend_from_slice(&body);
+        out
+    }
+
+    /// Restore a state produced by `serialize_state` of an element of the same bearing.
+    pub fn deserialize_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        let body = bytes
+            .strip_prefix(STATE_MAGIC.as_slice())
+            .ok_or_else(|| "not a serialized state of this FMU (bad magic)".to_string())?;
+        let s: OwnedSerializedState = state_codec().deserialize(body).map_err(|e| format!("corrupt serialized state: {e}"))?;
+        if s.bearing != self.bearing.name || s.z != self.n_rollers() {
+            return Err(format!(
+                "serialized state is for bearing {} with {} rollers, this instance is {} with {}",
+                s.bearing,
+                s.z,
+                self.bearing.name,
+                self.n_rollers()
+            ));
+        }
+        if s.state.params.roller_dd.len() != self.n_rollers() || s.state.outputs.tilt.len() != self.n_rollers() {
+            return Err("corrupt serialized state: per-roller arrays of the wrong length".into());
+        }
+        let same_params = s.state.params == self.state.params;
+        self.state = s.state;
+        if !same_params {
+            self.model = None;
+        }
+        Ok(())
+    }
+}
+
+/// bincode with a size limit, so a hostile byte string cannot make us allocate without bound.
+fn state_codec() -> impl bincode::Options {
+    use bincode::Options;
+    bincode::DefaultOptions::new().with_fixint_encoding().with_limit(1 << 26)
+}
+
+#[derive(Serialize)]
+struct SerializedState<'a> {
+    bearing: &'a str,
+    z: usize,
+    state: &'a State,
+}
+
+#[derive(Deserialize)]
+struct OwnedSerializedState {
+    bearing: String,
+    z: usize,
+    state: State,
+}
+
+/// Azimuth of roller `j` (0-based) when roller 1 sits at `cage_angle`, wrapped to [0, 2 pi).
+pub fn roller_azimuth(cage_angle: f64, j: usize, z: usize) -> f64 {
+    wrap_angle(cage_angle + std::f64::consts::TAU * j as f64 / z as f64)
+}
+
+fn wrap_angle(a: f64) -> f64 {
+    let w = a.rem_euclid(std::f64::consts::TAU);
+    if w.is_finite() {
+        w
+    } else {
+        0.0
+    }
+}
