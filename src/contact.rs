@@ -35,11 +35,16 @@ pub enum LineLaw {
 
 impl LineLaw {
     pub fn johnson(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
-        LineLaw::Johnson { c: PI * slice_len * e_prime, eight_r: r_bar.iter().map(|r| 8.0 * r).collect() }
+        LineLaw::Johnson {
+            c: PI * slice_len * e_prime,
+            eight_r: r_bar.iter().map(|r| 8.0 * r).collect(),
+        }
     }
 
     pub fn palmgren(length: f64, slices: usize) -> LineLaw {
-        LineLaw::Palmgren { k: palmgren_roller_stiffness(length) / slices as f64 }
+        LineLaw::Palmgren {
+            k: palmgren_roller_stiffness(length) / slices as f64,
+        }
     }
 
     /// Load of slice `k` at interference `delta`, its derivative, and whether the law was
@@ -85,7 +90,11 @@ impl LineLaw {
                     } else {
                         lo = d
                     }
-                    let mut next = if df > 0.0 { d - r / df } else { 0.5 * (lo + hi) };
+                    let mut next = if df > 0.0 {
+                        d - r / df
+                    } else {
+                        0.5 * (lo + hi)
+                    };
                     if !(next > lo && next < hi) {
                         next = 0.5 * (lo + hi);
                     }
@@ -118,8 +127,10 @@ fn johnson(c: f64, eight_r: f64, delta: f64) -> (f64, f64, bool) {
     }
 }
 
-/// Hertz point contact of two bodies with principal relative radii `rx`, `ry` (aligned axes),
-/// with the Hamrock-Brewe (1983) closed-form ellipticity and elliptic integrals.
+/// Hertz point contact of two bodies with principal relative radii `rx`, `ry` (aligned axes).
+/// The ellipticity and the complete elliptic integrals are solved exactly (AGM and
+/// bisection, once at set-up); [`PointContact::hamrock_brewe`] gives the closed-form
+/// approximation of Hamrock & Brewe (1983) for comparison.
 #[derive(Debug, Clone, Copy)]
 pub struct PointContact {
     /// Radius in the direction of the meridian (x) and circumferential (y) of the contact.
@@ -129,7 +140,7 @@ pub struct PointContact {
     pub r: f64,
     /// Ellipticity a/b (semi-axis along the larger radius over the other), >= 1.
     pub k: f64,
-    /// Complete elliptic integrals of the second (E) and first (F) kind, approximated.
+    /// Complete elliptic integrals of the second (E) and first (F = K) kind of the ellipse.
     pub e_int: f64,
     pub f_int: f64,
     pub e_prime: f64,
@@ -137,17 +148,97 @@ pub struct PointContact {
     pub stiffness: f64,
 }
 
+/// Complete elliptic integrals K(m), E(m) of parameter m = e^2 by the arithmetic-geometric mean.
+pub fn elliptic_integrals(m: f64) -> (f64, f64) {
+    let mut a = 1.0_f64;
+    let mut b = (1.0 - m).sqrt();
+    let mut c = m.sqrt();
+    let mut sum = 0.5 * c * c;
+    let mut pow2 = 0.5;
+    for _ in 0..40 {
+        if c.abs() < 1e-16 {
+            break;
+        }
+        let an = 0.5 * (a + b);
+        let bn = (a * b).sqrt();
+        c = 0.5 * (a - b);
+        pow2 *= 2.0;
+        sum += pow2 * c * c;
+        a = an;
+        b = bn;
+    }
+    let k = PI / (2.0 * a);
+    (k, k * (1.0 - sum))
+}
+
 impl PointContact {
     pub fn new(rx: f64, ry: f64, e_prime: f64) -> PointContact {
         let (small, large) = if rx <= ry { (rx, ry) } else { (ry, rx) };
         let ratio = large / small;
-        let k = 1.0339 * ratio.powf(0.6360);
-        let e_int = 1.0003 + 0.5968 / ratio;
-        let f_int = 1.5277 + 0.6023 * ratio.ln();
+        // Curvature ratio B/A of the ellipse with eccentricity e (m = e^2):
+        // B/A = (E/(1-m) - K) / (K - E), increasing from 1 at m = 0.
+        let curvature_ratio = |m: f64| {
+            let (kk, ee) = elliptic_integrals(m);
+            (ee / (1.0 - m) - kk) / (kk - ee)
+        };
+        let m = if ratio <= 1.0 + 1e-12 {
+            0.0
+        } else {
+            let (mut lo, mut hi) = (0.0_f64, 1.0 - 1e-15);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if curvature_ratio(mid) < ratio {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        let (f_int, e_int) = if m == 0.0 {
+            (PI / 2.0, PI / 2.0)
+        } else {
+            elliptic_integrals(m)
+        };
+        Self::from_constants(rx, ry, e_prime, 1.0 / (1.0 - m).sqrt(), e_int, f_int)
+    }
+
+    /// The closed-form Hamrock-Brewe approximation (k = 1.0339 (Ry/Rx)^0.636,
+    /// E = 1.0003 + 0.5968 Rx/Ry, F = 1.5277 + 0.6023 ln(Ry/Rx)).
+    pub fn hamrock_brewe(rx: f64, ry: f64, e_prime: f64) -> PointContact {
+        let (small, large) = if rx <= ry { (rx, ry) } else { (ry, rx) };
+        let ratio = large / small;
+        Self::from_constants(
+            rx,
+            ry,
+            e_prime,
+            1.0339 * ratio.powf(0.6360),
+            1.0003 + 0.5968 / ratio,
+            1.5277 + 0.6023 * ratio.ln(),
+        )
+    }
+
+    fn from_constants(
+        rx: f64,
+        ry: f64,
+        e_prime: f64,
+        k: f64,
+        e_int: f64,
+        f_int: f64,
+    ) -> PointContact {
         let r = 1.0 / (1.0 / rx + 1.0 / ry);
         // delta = F [ 9/(2 E R) (Q/(pi k E'))^2 ]^(1/3)  =>  Q = pi k E' sqrt(2 E R / 9) (delta/F)^(3/2)
         let stiffness = PI * k * e_prime * (2.0 * e_int * r / 9.0).sqrt() / f_int.powf(1.5);
-        PointContact { rx, ry, r, k, e_int, f_int, e_prime, stiffness }
+        PointContact {
+            rx,
+            ry,
+            r,
+            k,
+            e_int,
+            f_int,
+            e_prime,
+            stiffness,
+        }
     }
 
     /// Load and its derivative at interference `delta`.
@@ -223,7 +314,10 @@ mod tests {
 
     #[test]
     fn no_load_without_interference() {
-        for law in [LineLaw::palmgren(0.02, 10), LineLaw::johnson(2e11, 0.002, &[0.01])] {
+        for law in [
+            LineLaw::palmgren(0.02, 10),
+            LineLaw::johnson(2e11, 0.002, &[0.01]),
+        ] {
             assert_eq!(law.load(0, 0.0).0, 0.0);
             assert_eq!(law.load(0, -1e-6).0, 0.0);
         }
@@ -233,19 +327,52 @@ mod tests {
 
     #[test]
     fn sphere_on_plane_matches_hertz() {
-        // Sphere radius R on a plane: Q = 4/3 E* sqrt(R) delta^1.5 with E* = E'/2.
-        // The Hamrock-Brewe fits are within about 3 % at k = 1.
+        // Sphere radius R on a plane: Q = 4/3 E* sqrt(R) delta^1.5 with E* = E'/2,
+        // contact radius a = (3 Q R / (4 E*))^(1/3).
         let (r, e) = (0.15_f64, 2.2e11);
         // two equal principal relative radii r: a sphere of radius r on a plane
-        let pc_eq = PointContact::new(r, r, e);
+        let pc = PointContact::new(r, r, e);
         let delta = 1e-5_f64;
         let exact = 4.0 / 3.0 * (e / 2.0) * r.sqrt() * delta.powf(1.5);
-        let (q, _) = pc_eq.load(delta);
-        assert!((q - exact).abs() < 0.03 * exact, "{q} vs {exact}");
-        let (a, b, pmax) = pc_eq.ellipse(q);
+        let (q, dq) = pc.load(delta);
+        assert!((q - exact).abs() < 1e-12 * exact, "{q} vs {exact}");
+        assert!((dq - 1.5 * q / delta).abs() < 1e-9 * dq);
+        let (a, b, pmax) = pc.ellipse(q);
         let a_exact = (3.0 * q * r / (4.0 * e / 2.0)).cbrt();
-        assert!((a - a_exact).abs() < 0.03 * a_exact && (b - a_exact).abs() < 0.03 * a_exact);
+        assert!((a - a_exact).abs() < 1e-12 * a_exact && (b - a_exact).abs() < 1e-12 * a_exact);
         assert!((pmax - 1.5 * q / (PI * a * b)).abs() < 1e-9 * pmax);
+    }
+
+    #[test]
+    fn elliptic_integrals_hand_values() {
+        // K(0.5) = 1.8540746773013719, E(0.5) = 1.3506438810476755 (Abramowitz & Stegun)
+        let (k, e) = elliptic_integrals(0.5);
+        assert!((k - 1.854_074_677_301_371_9).abs() < 1e-14);
+        assert!((e - 1.350_643_881_047_675_5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn exact_ellipse_agrees_with_hamrock_brewe_within_its_accuracy() {
+        // Hamrock & Brewe quote a few per cent over 1 <= Ry/Rx <= 100.
+        for ratio in [1.3, 3.0, 10.0, 50.0] {
+            let ex = PointContact::new(0.1, 0.1 * ratio, 2.2e11);
+            let hb = PointContact::hamrock_brewe(0.1, 0.1 * ratio, 2.2e11);
+            assert!(
+                (ex.k / hb.k - 1.0).abs() < 0.05,
+                "k at {ratio}: {} vs {}",
+                ex.k,
+                hb.k
+            );
+            assert!(
+                (ex.stiffness / hb.stiffness - 1.0).abs() < 0.10,
+                "K at {ratio}: {} vs {}",
+                ex.stiffness,
+                hb.stiffness
+            );
+            // ellipse elongated along the larger radius
+            let (a, b, _) = ex.ellipse(1000.0);
+            assert!(a > b);
+        }
     }
 
     #[test]

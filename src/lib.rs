@@ -12,8 +12,8 @@
 //! - [`fmi`]: the FMI 2.0 C ABI adapter
 
 pub mod bearing;
-pub mod fmi;
 pub mod contact;
+pub mod fmi;
 pub mod geometry;
 pub mod model;
 pub mod model_description;

@@ -66,7 +66,11 @@ impl Parameters {
                 LubricationModel::Ehl => Lubrication::Ehl,
                 LubricationModel::Dry => Lubrication::Dry,
             },
-            preload: if b.displacement_preload { Preload::Displacement } else { Preload::Force },
+            preload: if b.displacement_preload {
+                Preload::Displacement
+            } else {
+                Preload::Force
+            },
             slices: b.slices,
             tolerance: b.tolerance,
             mu: b.mu,
@@ -90,60 +94,132 @@ impl Parameters {
 
     /// Check every parameter against its valid range; the error names the parameter.
     pub fn validate(&self, b: &Bearing) -> Result<(), ModelError> {
-        let bad = |name: &str, msg: String| Err(ModelError::InvalidParameter { name: name.to_string(), message: msg });
+        let bad = |name: &str, msg: String| {
+            Err(ModelError::InvalidParameter {
+                name: name.to_string(),
+                message: msg,
+            })
+        };
         let d = b.roller_mean_diameter;
         if self.slices < 1 || self.slices > 200 {
-            return bad("slices", format!("must be in [1, 200], got {}", self.slices));
+            return bad(
+                "slices",
+                format!("must be in [1, 200], got {}", self.slices),
+            );
         }
         if !(self.tolerance.is_finite() && self.tolerance >= 1e-14 && self.tolerance <= 0.1) {
-            return bad("tolerance", format!("must be in [1e-14, 0.1], got {}", self.tolerance));
+            return bad(
+                "tolerance",
+                format!("must be in [1e-14, 0.1], got {}", self.tolerance),
+            );
         }
         if !(self.mu.is_finite() && (0.0..=2.0).contains(&self.mu)) {
             return bad("mu", format!("must be in [0, 2], got {}", self.mu));
         }
-        if !(self.pocket_clearance.is_finite() && self.pocket_clearance >= 0.0 && self.pocket_clearance <= 0.5 * d) {
-            return bad("cage.pocketClearance", format!("must be in [0, {:.3e}] m, got {}", 0.5 * d, self.pocket_clearance));
+        if !(self.pocket_clearance.is_finite()
+            && self.pocket_clearance >= 0.0
+            && self.pocket_clearance <= 0.5 * d)
+        {
+            return bad(
+                "cage.pocketClearance",
+                format!(
+                    "must be in [0, {:.3e}] m, got {}",
+                    0.5 * d,
+                    self.pocket_clearance
+                ),
+            );
         }
         if !(self.eta0.is_finite() && self.eta0 > 0.0 && self.eta0 <= 100.0) {
-            return bad("oil.eta0", format!("must be in (0, 100] Pa s, got {}", self.eta0));
+            return bad(
+                "oil.eta0",
+                format!("must be in (0, 100] Pa s, got {}", self.eta0),
+            );
         }
         if !(self.alpha.is_finite() && self.alpha >= 0.0 && self.alpha <= 1e-7) {
-            return bad("oil.alpha", format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha));
+            return bad(
+                "oil.alpha",
+                format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha),
+            );
         }
         if !(self.roughness.is_finite() && self.roughness >= 0.0 && self.roughness <= 1e-4) {
-            return bad("roughness", format!("must be in [0, 1e-4] m, got {}", self.roughness));
+            return bad(
+                "roughness",
+                format!("must be in [0, 1e-4] m, got {}", self.roughness),
+            );
         }
         if !(self.clearance.is_finite() && self.clearance.abs() <= 0.05 * d) {
-            return bad("clearance", format!("magnitude must not exceed {:.3e} m (5 % of the roller diameter), got {}", 0.05 * d, self.clearance));
+            return bad(
+                "clearance",
+                format!(
+                    "magnitude must not exceed {:.3e} m (5 % of the roller diameter), got {}",
+                    0.05 * d,
+                    self.clearance
+                ),
+            );
         }
         if self.outer_lobes > 64 {
-            return bad("outer.lobes", format!("must be in [0, 64], got {}", self.outer_lobes));
+            return bad(
+                "outer.lobes",
+                format!("must be in [0, 64], got {}", self.outer_lobes),
+            );
         }
-        if !(self.outer_waveform.is_finite() && self.outer_waveform >= 0.0 && self.outer_waveform <= 0.05 * d) {
-            return bad("outer.waveform", format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.outer_waveform));
+        if !(self.outer_waveform.is_finite()
+            && self.outer_waveform >= 0.0
+            && self.outer_waveform <= 0.05 * d)
+        {
+            return bad(
+                "outer.waveform",
+                format!(
+                    "must be in [0, {:.3e}] m, got {}",
+                    0.05 * d,
+                    self.outer_waveform
+                ),
+            );
         }
         if !(self.cage_slip_rate.is_finite() && (0.0..=1.0).contains(&self.cage_slip_rate)) {
-            return bad("cageSlipRate", format!("must be in [0, 1], got {}", self.cage_slip_rate));
+            return bad(
+                "cageSlipRate",
+                format!("must be in [0, 1], got {}", self.cage_slip_rate),
+            );
         }
         if !self.cage_angle0.is_finite() {
-            return bad("cage.angle0", format!("must be finite, got {}", self.cage_angle0));
+            return bad(
+                "cage.angle0",
+                format!("must be finite, got {}", self.cage_angle0),
+            );
         }
         if !(self.crown_drop.is_finite() && self.crown_drop >= 0.0 && self.crown_drop <= 0.05 * d) {
-            return bad("roller.crownDrop", format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.crown_drop));
+            return bad(
+                "roller.crownDrop",
+                format!(
+                    "must be in [0, {:.3e}] m, got {}",
+                    0.05 * d,
+                    self.crown_drop
+                ),
+            );
         }
         if !(self.flange_mu0.is_finite() && (0.0..=2.0).contains(&self.flange_mu0)) {
-            return bad("flange.mu0", format!("must be in [0, 2], got {}", self.flange_mu0));
+            return bad(
+                "flange.mu0",
+                format!("must be in [0, 2], got {}", self.flange_mu0),
+            );
         }
         for (j, dd) in self.roller_dd.iter().enumerate() {
             if !(dd.is_finite() && dd.abs() <= 0.01 * d) {
                 return bad(
                     &format!("roller[{}].dD", j + 1),
-                    format!("magnitude must not exceed {:.3e} m (1 % of the roller diameter), got {dd}", 0.01 * d),
+                    format!(
+                        "magnitude must not exceed {:.3e} m (1 % of the roller diameter), got {dd}",
+                        0.01 * d
+                    ),
                 );
             }
         }
         if self.fidelity == Fidelity::Dynamic {
-            return bad("fidelity", "the dynamic model (fidelity = 1) is not available in this build yet".into());
+            return bad(
+                "fidelity",
+                "the dynamic model (fidelity = 1) is not available in this build yet".into(),
+            );
         }
         Ok(())
     }
@@ -192,7 +268,10 @@ impl Inputs {
         ];
         for (name, v) in named {
             if !v.is_finite() {
-                return Err(ModelError::InvalidInput { name, message: format!("is {v}; inputs must be finite") });
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!("is {v}; inputs must be finite"),
+                });
             }
         }
         // Misalignment: the small-angle ring kinematics hold far beyond what a bearing survives.
@@ -201,7 +280,10 @@ impl Inputs {
             if v.abs() > max_tilt {
                 return Err(ModelError::InvalidInput {
                     name,
-                    message: format!("{:.4} deg exceeds the model's range of +-0.5 deg of shaft deflection", v.to_degrees()),
+                    message: format!(
+                        "{:.4} deg exceeds the model's range of +-0.5 deg of shaft deflection",
+                        v.to_degrees()
+                    ),
                 });
             }
         }
@@ -210,7 +292,10 @@ impl Inputs {
         if self.axial_displacement.abs() > max_disp {
             return Err(ModelError::InvalidInput {
                 name: "axialDisplacement",
-                message: format!("{:.3e} m exceeds the model's range of +-{:.3e} m", self.axial_displacement, max_disp),
+                message: format!(
+                    "{:.3e} m exceeds the model's range of +-{:.3e} m",
+                    self.axial_displacement, max_disp
+                ),
             });
         }
         Ok(())
@@ -289,7 +374,12 @@ impl Outputs {
         self.qi_max = self.qi.iter().fold(0.0, |m, q| m.max(*q));
         self.qo_max = self.qo.iter().fold(0.0, |m, q| m.max(*q));
         self.qf_max = self.qf.iter().fold(0.0, |m, q| m.max(*q));
-        self.loaded_rollers = self.qi.iter().zip(&self.qo).filter(|(a, b)| **a > 0.0 && **b > 0.0).count() as i32;
+        self.loaded_rollers = self
+            .qi
+            .iter()
+            .zip(&self.qo)
+            .filter(|(a, b)| **a > 0.0 && **b > 0.0)
+            .count() as i32;
     }
 
     /// True when every output is finite.
@@ -317,9 +407,23 @@ impl Outputs {
             self.solver_residual,
         ];
         scalars.iter().all(|v| v.is_finite())
-            && [&self.tilt, &self.skew, &self.qi, &self.qo, &self.qf, &self.qc, &self.azimuth, &self.nit, &self.not, &self.nft, &self.nis, &self.nos, &self.nfs]
-                .iter()
-                .all(|a| a.iter().all(|v| v.is_finite()))
+            && [
+                &self.tilt,
+                &self.skew,
+                &self.qi,
+                &self.qo,
+                &self.qf,
+                &self.qc,
+                &self.azimuth,
+                &self.nit,
+                &self.not,
+                &self.nft,
+                &self.nis,
+                &self.nos,
+                &self.nfs,
+            ]
+            .iter()
+            .all(|a| a.iter().all(|v| v.is_finite()))
     }
 }
 
@@ -335,16 +439,26 @@ pub enum Severity {
 /// What went wrong in a model evaluation. Messages say why, in the user's terms.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ModelError {
-    InvalidParameter { name: String, message: String },
-    InvalidInput { name: &'static str, message: String },
+    InvalidParameter {
+        name: String,
+        message: String,
+    },
+    InvalidInput {
+        name: &'static str,
+        message: String,
+    },
     /// The Newton solver found no equilibrium within its iteration budget.
-    NoEquilibrium { message: String },
+    NoEquilibrium {
+        message: String,
+    },
 }
 
 impl ModelError {
     pub fn severity(&self) -> Severity {
         match self {
-            ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => Severity::Error,
+            ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => {
+                Severity::Error
+            }
             ModelError::NoEquilibrium { .. } => Severity::Discard,
         }
     }
@@ -353,9 +467,13 @@ impl ModelError {
 impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            ModelError::InvalidParameter { name, message } => write!(f, "parameter {name} {message}"),
+            ModelError::InvalidParameter { name, message } => {
+                write!(f, "parameter {name} {message}")
+            }
             ModelError::InvalidInput { name, message } => write!(f, "input {name} {message}"),
-            ModelError::NoEquilibrium { message } => write!(f, "no quasi-static equilibrium: {message}"),
+            ModelError::NoEquilibrium { message } => {
+                write!(f, "no quasi-static equilibrium: {message}")
+            }
         }
     }
 }
