@@ -35,11 +35,7 @@ impl fmt::Display for BearingError {
         if self.field.is_empty() {
             write!(f, "invalid bearing description: {}", self.message)
         } else {
-            write!(
-                f,
-                "invalid bearing description: field `{}`: {}",
-                self.field, self.message
-            )
+            write!(f, "invalid bearing description: field `{}`: {}", self.field, self.message)
         }
     }
 }
@@ -325,10 +321,7 @@ impl Bearing {
             .map(|(_, t)| *t)
             .ok_or_else(|| {
                 let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
-                err(
-                    "",
-                    format!("unknown preset `{name}`; presets are {}", names.join(", ")),
-                )
+                err("", format!("unknown preset `{name}`; presets are {}", names.join(", ")))
             })?;
         Bearing::from_json(text)
     }
@@ -345,17 +338,13 @@ impl Bearing {
         }
         let path = std::path::Path::new(arg);
         if path.exists() {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| err("", format!("cannot read bearing file {arg}: {e}")))?;
+            let text = std::fs::read_to_string(path).map_err(|e| err("", format!("cannot read bearing file {arg}: {e}")))?;
             return Bearing::from_json(&text);
         }
         let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
         Err(err(
             "",
-            format!(
-                "`{arg}` is neither a preset ({}) nor an existing file",
-                names.join(", ")
-            ),
+            format!("`{arg}` is neither a preset ({}) nor an existing file", names.join(", ")),
         ))
     }
 
@@ -423,12 +412,7 @@ fn material(field: &str, m: &MaterialFile) -> Result<Material, BearingError> {
     Ok(Material {
         e: in_range(&format!("{field}.E_GPa"), m.e_gpa, 0.1, 2000.0)? * 1e9,
         nu: in_range(&format!("{field}.nu"), m.nu, 0.0, 0.499)?,
-        density: in_range(
-            &format!("{field}.density_kg_m3"),
-            m.density_kg_m3,
-            100.0,
-            30000.0,
-        )?,
+        density: in_range(&format!("{field}.density_kg_m3"), m.density_kg_m3, 100.0, 30000.0)?,
     })
 }
 
@@ -442,10 +426,7 @@ impl BearingFile {
             return Err(err("name", "must not be empty"));
         }
         let bore = positive("envelope.bore_mm", self.envelope.bore_mm)? * MM;
-        let od = positive(
-            "envelope.outside_diameter_mm",
-            self.envelope.outside_diameter_mm,
-        )? * MM;
+        let od = positive("envelope.outside_diameter_mm", self.envelope.outside_diameter_mm)? * MM;
         let width = positive("envelope.width_mm", self.envelope.width_mm)? * MM;
         if od <= bore {
             return Err(err("envelope.outside_diameter_mm", "must exceed the bore"));
@@ -454,10 +435,7 @@ impl BearingFile {
         if z < 3 || z as usize > crate::variables::MAX_ROLLERS {
             return Err(err(
                 "rollers.count",
-                format!(
-                    "must be an integer in [3, {}], got {z}",
-                    crate::variables::MAX_ROLLERS
-                ),
+                format!("must be an integer in [3, {}], got {z}", crate::variables::MAX_ROLLERS),
             ));
         }
         let z = z as usize;
@@ -465,10 +443,7 @@ impl BearingFile {
         let cone = in_range("cone_angle_deg", self.cone_angle_deg, 0.0, 45.0)?.to_radians();
         let cup = in_range("cup_angle_deg", self.cup_angle_deg, 0.0, 60.0)?.to_radians();
         if cup < cone {
-            return Err(err(
-                "cup_angle_deg",
-                "must not be smaller than cone_angle_deg",
-            ));
+            return Err(err("cup_angle_deg", "must not be smaller than cone_angle_deg"));
         }
         let half_from_angles = 0.5 * (cup - cone);
         let half = match self.rollers.half_cone_angle_deg {
@@ -491,21 +466,18 @@ impl BearingFile {
         match self.kind {
             Kind::Cylindrical => {
                 if cone != 0.0 || cup != 0.0 {
-                    return Err(err(
-                        "cone_angle_deg",
-                        "a cylindrical bearing has zero raceway angles",
-                    ));
+                    return Err(err("cone_angle_deg", "a cylindrical bearing has zero raceway angles"));
                 }
                 if self.flange.is_some() {
-                    return Err(err("flange", "a cylindrical roller bearing carries no flange load here; remove the field"));
+                    return Err(err(
+                        "flange",
+                        "a cylindrical roller bearing carries no flange load here; remove the field",
+                    ));
                 }
             }
             Kind::Tapered => {
                 if cup <= 0.0 {
-                    return Err(err(
-                        "cup_angle_deg",
-                        "a tapered bearing needs a cup angle > 0",
-                    ));
+                    return Err(err("cup_angle_deg", "a tapered bearing needs a cup angle > 0"));
                 }
             }
         }
@@ -514,12 +486,8 @@ impl BearingFile {
         let r = &self.rollers;
         let mean_d = match (r.mean_diameter_mm, r.large_end_diameter_mm, r.small_end_diameter_mm) {
             (Some(m), None, None) => positive("rollers.mean_diameter_mm", m)? * MM,
-            (None, Some(l), None) => {
-                positive("rollers.large_end_diameter_mm", l)? * MM - length * tan_h
-            }
-            (None, None, Some(s)) => {
-                positive("rollers.small_end_diameter_mm", s)? * MM + length * tan_h
-            }
+            (None, Some(l), None) => positive("rollers.large_end_diameter_mm", l)? * MM - length * tan_h,
+            (None, None, Some(s)) => positive("rollers.small_end_diameter_mm", s)? * MM + length * tan_h,
             (None, Some(l), Some(s)) => {
                 let l = positive("rollers.large_end_diameter_mm", l)? * MM;
                 let s = positive("rollers.small_end_diameter_mm", s)? * MM;
@@ -547,19 +515,13 @@ impl BearingFile {
             }
         };
         if mean_d <= 0.0 || length * tan_h >= mean_d {
-            return Err(err(
-                "rollers.length_mm",
-                "roller would have a non-positive small-end diameter",
-            ));
+            return Err(err("rollers.length_mm", "roller would have a non-positive small-end diameter"));
         }
         let dm = positive("pitch_diameter_mm", self.pitch_diameter_mm)? * MM;
         if dm <= bore || dm >= od {
             return Err(err(
                 "pitch_diameter_mm",
-                format!(
-                    "{:.3} mm must lie between the bore and the outside diameter",
-                    dm / MM
-                ),
+                format!("{:.3} mm must lie between the bore and the outside diameter", dm / MM),
             ));
         }
         let axis = cone + half;
@@ -590,12 +552,7 @@ impl BearingFile {
         }
         // Flange
         let flange_angle = match (&self.flange, self.kind) {
-            (None, Kind::Tapered) => {
-                return Err(err(
-                    "flange",
-                    "a tapered roller bearing needs its flange (rib) geometry",
-                ))
-            }
+            (None, Kind::Tapered) => return Err(err("flange", "a tapered roller bearing needs its flange (rib) geometry")),
             (None, Kind::Cylindrical) => None,
             (Some(f), _) => {
                 let given = [
@@ -614,12 +571,7 @@ impl BearingFile {
                 } else if let Some(o) = f.opening_angle_deg {
                     (90.0 - in_range("flange.opening_angle_deg", o, 0.0, 45.0)?).to_radians()
                 } else {
-                    let x = in_range(
-                        "flange.face_to_roller_axis_rad",
-                        f.face_to_roller_axis_rad.unwrap(),
-                        1.0,
-                        PI / 2.0,
-                    )?;
+                    let x = in_range("flange.face_to_roller_axis_rad", f.face_to_roller_axis_rad.unwrap(), 1.0, PI / 2.0)?;
                     PI / 2.0 - axis + (PI / 2.0 - x)
                 };
                 Some(a)
@@ -629,8 +581,7 @@ impl BearingFile {
         // Distance of the flange contact from the bearing axis for end radius rs (the rib
         // normal n_f = (sin af, -cos af), sphere centre on the roller axis at rs from the end):
         // r_f = dm/2 + (l/2) sin(axis) + rs (cos af - sin(axis)).
-        let rib_radius =
-            |af: f64, rs: f64| 0.5 * dm + 0.5 * length * axis.sin() + rs * (af.cos() - axis.sin());
+        let rib_radius = |af: f64, rs: f64| 0.5 * dm + 0.5 * length * axis.sin() + rs * (af.cos() - axis.sin());
         let end_radius = match (flange_angle, r.end_radius_mm) {
             (None, _) => 0.0,
             (Some(_), Some(rs)) => positive("rollers.end_radius_mm", rs)? * MM,
@@ -674,10 +625,7 @@ impl BearingFile {
         }
         let crown = non_negative("rollers.crown_drop_um", r.crown_drop_um)? * UM;
         if crown > 0.05 * mean_d {
-            return Err(err(
-                "rollers.crown_drop_um",
-                "is larger than 5 % of the roller diameter",
-            ));
+            return Err(err("rollers.crown_drop_um", "is larger than 5 % of the roller diameter"));
         }
         let roller_material = material("materials.roller", &self.materials.roller)?;
         let ring_material = material("materials.rings", &self.materials.rings)?;
@@ -685,10 +633,7 @@ impl BearingFile {
         let c = &self.cage;
         let pocket = non_negative("cage.pocket_clearance_mm", c.pocket_clearance_mm)? * MM;
         if pocket > 0.5 * mean_d {
-            return Err(err(
-                "cage.pocket_clearance_mm",
-                "exceeds half the roller diameter",
-            ));
+            return Err(err("cage.pocket_clearance_mm", "exceeds half the roller diameter"));
         }
         let guide = non_negative("cage.guide_clearance_mm", c.guide_clearance_mm)? * MM;
         let land_width = positive("cage.land_width_mm", c.land_width_mm)? * MM;
@@ -705,10 +650,7 @@ impl BearingFile {
         let rw = &self.raceway;
         let clearance = finite("raceway.clearance_um", rw.clearance_um)? * UM;
         if clearance.abs() > 0.05 * mean_d {
-            return Err(err(
-                "raceway.clearance_um",
-                "magnitude exceeds 5 % of the roller diameter",
-            ));
+            return Err(err("raceway.clearance_um", "magnitude exceeds 5 % of the roller diameter"));
         }
         if rw.outer_lobes < 0 || rw.outer_lobes > 64 {
             return Err(err(
@@ -718,17 +660,11 @@ impl BearingFile {
         }
         let waveform = non_negative("raceway.outer_waveform_um", rw.outer_waveform_um)? * UM;
         if waveform > 0.05 * mean_d {
-            return Err(err(
-                "raceway.outer_waveform_um",
-                "exceeds 5 % of the roller diameter",
-            ));
+            return Err(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
         }
         let s = &self.solver;
         if s.slices < 1 || s.slices > 200 {
-            return Err(err(
-                "solver.slices",
-                format!("must be an integer in [1, 200], got {}", s.slices),
-            ));
+            return Err(err("solver.slices", format!("must be an integer in [1, 200], got {}", s.slices)));
         }
         let tolerance = in_range("solver.tolerance", s.tolerance, 1e-14, 0.1)?;
         let op = &self.operating_point;
@@ -738,10 +674,7 @@ impl BearingFile {
         let fz = finite("operating_point.Fz_N", op.fz_n)?;
         let xi = in_range("operating_point.xi_deg", op.xi_deg, -5.0, 5.0)?.to_radians();
         let zeta = in_range("operating_point.zeta_deg", op.zeta_deg, -5.0, 5.0)?.to_radians();
-        let ad = finite(
-            "operating_point.axial_displacement_um",
-            op.axial_displacement_um,
-        )? * UM;
+        let ad = finite("operating_point.axial_displacement_um", op.axial_displacement_um)? * UM;
         Ok(Bearing {
             name: self.name.clone(),
             description: self.description.clone(),
@@ -873,10 +806,7 @@ mod tests {
             cur[*path.last().unwrap()] = value;
             let e = error_of(v);
             let want = path.join(".");
-            assert!(
-                e.field.starts_with(&want) || e.to_string().contains(&want),
-                "{want}: {e}"
-            );
+            assert!(e.field.starts_with(&want) || e.to_string().contains(&want), "{want}: {e}");
         }
     }
 

@@ -90,11 +90,7 @@ impl LineLaw {
                     } else {
                         lo = d
                     }
-                    let mut next = if df > 0.0 {
-                        d - r / df
-                    } else {
-                        0.5 * (lo + hi)
-                    };
+                    let mut next = if df > 0.0 { d - r / df } else { 0.5 * (lo + hi) };
                     if !(next > lo && next < hi) {
                         next = 0.5 * (lo + hi);
                     }
@@ -195,11 +191,7 @@ impl PointContact {
             }
             0.5 * (lo + hi)
         };
-        let (f_int, e_int) = if m == 0.0 {
-            (PI / 2.0, PI / 2.0)
-        } else {
-            elliptic_integrals(m)
-        };
+        let (f_int, e_int) = if m == 0.0 { (PI / 2.0, PI / 2.0) } else { elliptic_integrals(m) };
         Self::from_constants(rx, ry, e_prime, 1.0 / (1.0 - m).sqrt(), e_int, f_int)
     }
 
@@ -218,14 +210,7 @@ impl PointContact {
         )
     }
 
-    fn from_constants(
-        rx: f64,
-        ry: f64,
-        e_prime: f64,
-        k: f64,
-        e_int: f64,
-        f_int: f64,
-    ) -> PointContact {
+    fn from_constants(rx: f64, ry: f64, e_prime: f64, k: f64, e_int: f64, f_int: f64) -> PointContact {
         let r = 1.0 / (1.0 / rx + 1.0 / ry);
         // delta = F [ 9/(2 E R) (Q/(pi k E'))^2 ]^(1/3)  =>  Q = pi k E' sqrt(2 E R / 9) (delta/F)^(3/2)
         let stiffness = PI * k * e_prime * (2.0 * e_int * r / 9.0).sqrt() / f_int.powf(1.5);
@@ -314,10 +299,7 @@ mod tests {
 
     #[test]
     fn no_load_without_interference() {
-        for law in [
-            LineLaw::palmgren(0.02, 10),
-            LineLaw::johnson(2e11, 0.002, &[0.01]),
-        ] {
+        for law in [LineLaw::palmgren(0.02, 10), LineLaw::johnson(2e11, 0.002, &[0.01])] {
             assert_eq!(law.load(0, 0.0).0, 0.0);
             assert_eq!(law.load(0, -1e-6).0, 0.0);
         }
@@ -357,12 +339,7 @@ mod tests {
         for ratio in [1.3, 3.0, 10.0, 50.0] {
             let ex = PointContact::new(0.1, 0.1 * ratio, 2.2e11);
             let hb = PointContact::hamrock_brewe(0.1, 0.1 * ratio, 2.2e11);
-            assert!(
-                (ex.k / hb.k - 1.0).abs() < 0.05,
-                "k at {ratio}: {} vs {}",
-                ex.k,
-                hb.k
-            );
+            assert!((ex.k / hb.k - 1.0).abs() < 0.05, "k at {ratio}: {} vs {}", ex.k, hb.k);
             assert!(
                 (ex.stiffness / hb.stiffness - 1.0).abs() < 0.10,
                 "K at {ratio}: {} vs {}",

@@ -116,20 +116,10 @@ impl Geometry {
         let l = b.roller_length;
         let rm = b.roller_mean_radius();
         let slice_len = l / s as f64;
-        let slice_s: Vec<f64> = (0..s)
-            .map(|k| -0.5 * l + (k as f64 + 0.5) * slice_len)
-            .collect();
+        let slice_s: Vec<f64> = (0..s).map(|k| -0.5 * l + (k as f64 + 0.5) * slice_len).collect();
         let slice_radius: Vec<f64> = slice_s.iter().map(|&x| rm - x * ah.tan()).collect();
-        let crown: Vec<f64> = slice_s
-            .iter()
-            .map(|&x| p.crown_drop * (2.0 * x / l).powi(2))
-            .collect();
-        let e_prime = contact::effective_modulus(
-            b.roller_material.e,
-            b.roller_material.nu,
-            b.ring_material.e,
-            b.ring_material.nu,
-        );
+        let crown: Vec<f64> = slice_s.iter().map(|&x| p.crown_drop * (2.0 * x / l).powi(2)).collect();
+        let e_prime = contact::effective_modulus(b.roller_material.e, b.roller_material.nu, b.ring_material.e, b.ring_material.nu);
 
         let surface = |sign: f64| -> Vec<Vec2> {
             slice_s
@@ -143,52 +133,48 @@ impl Geometry {
                 })
                 .collect()
         };
-        let make_line =
-            |points: Vec<Vec2>, normal: Vec2, race_angle: f64, convex: bool| -> ContactLine {
-                let lever = points
-                    .iter()
-                    .map(|pt| cross([pt[0] - center[0], pt[1] - center[1]], normal))
-                    .collect();
-                let raceway_radius: Vec<f64> = points.iter().map(|pt| pt[1]).collect();
-                let raceway_curvature_radius: Vec<f64> = raceway_radius
-                    .iter()
-                    .map(|&r| {
-                        if race_angle.cos() > 0.0 {
-                            (if convex { 1.0 } else { -1.0 }) * r / race_angle.cos()
-                        } else {
-                            f64::INFINITY
-                        }
-                    })
-                    .collect();
-                let r_bar: Vec<f64> = slice_radius
-                    .iter()
-                    .zip(&raceway_curvature_radius)
-                    .map(|(&rr, &rc)| 1.0 / (ah.cos() / rr + 1.0 / rc))
-                    .collect();
-                let law = match b.contact_law {
-                    ContactLaw::Johnson => contact::LineLaw::johnson(e_prime, slice_len, &r_bar),
-                    ContactLaw::Palmgren => contact::LineLaw::palmgren(l, s),
-                };
-                ContactLine {
-                    point: points,
-                    normal,
-                    lever,
-                    r_bar,
-                    raceway_radius,
-                    raceway_curvature_radius,
-                    law,
-                }
+        let make_line = |points: Vec<Vec2>, normal: Vec2, race_angle: f64, convex: bool| -> ContactLine {
+            let lever = points
+                .iter()
+                .map(|pt| cross([pt[0] - center[0], pt[1] - center[1]], normal))
+                .collect();
+            let raceway_radius: Vec<f64> = points.iter().map(|pt| pt[1]).collect();
+            let raceway_curvature_radius: Vec<f64> = raceway_radius
+                .iter()
+                .map(|&r| {
+                    if race_angle.cos() > 0.0 {
+                        (if convex { 1.0 } else { -1.0 }) * r / race_angle.cos()
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect();
+            let r_bar: Vec<f64> = slice_radius
+                .iter()
+                .zip(&raceway_curvature_radius)
+                .map(|(&rr, &rc)| 1.0 / (ah.cos() / rr + 1.0 / rc))
+                .collect();
+            let law = match b.contact_law {
+                ContactLaw::Johnson => contact::LineLaw::johnson(e_prime, slice_len, &r_bar),
+                ContactLaw::Palmgren => contact::LineLaw::palmgren(l, s),
             };
+            ContactLine {
+                point: points,
+                normal,
+                lever,
+                r_bar,
+                raceway_radius,
+                raceway_curvature_radius,
+                law,
+            }
+        };
         let cone = make_line(surface(-1.0), [ai.sin(), ai.cos()], ai, true);
         let cup = make_line(surface(1.0), [-ao.sin(), -ao.cos()], ao, false);
 
         let flange = b.flange_angle.map(|af| {
             let rs = b.roller_end_radius;
             let n = [af.sin(), -af.cos()];
-            let sphere_center = [
-                center[0] + (-0.5 * l + rs) * axis[0],
-                center[1] + (-0.5 * l + rs) * axis[1],
-            ];
+            let sphere_center = [center[0] + (-0.5 * l + rs) * axis[0], center[1] + (-0.5 * l + rs) * axis[1]];
             let point = [sphere_center[0] - rs * n[0], sphere_center[1] - rs * n[1]];
             let rel = [point[0] - center[0], point[1] - center[1]];
             let offset = rel[0] * perp[0] + rel[1] * perp[1];
@@ -201,12 +187,7 @@ impl Geometry {
             let r_meridian = rs;
             let kappa = (1.0 / rs - af.cos() / rib_radius).max(MIN_RELATIVE_CURVATURE / rs);
             let r_circ = 1.0 / kappa;
-            let e_f = contact::effective_modulus(
-                b.roller_material.e,
-                b.roller_material.nu,
-                b.ring_material.e,
-                b.ring_material.nu,
-            );
+            let e_f = contact::effective_modulus(b.roller_material.e, b.roller_material.nu, b.ring_material.e, b.ring_material.nu);
             FlangeContact {
                 point,
                 normal: n,
@@ -335,15 +316,9 @@ mod tests {
         let g = geometry("TRB130x230");
         let k = g.slices - 1;
         for line in [&g.cone, &g.cup] {
-            let d = [
-                line.point[k][0] - line.point[0][0],
-                line.point[k][1] - line.point[0][1],
-            ];
+            let d = [line.point[k][0] - line.point[0][0], line.point[k][1] - line.point[0][1]];
             let dot = d[0] * line.normal[0] + d[1] * line.normal[1];
-            assert!(
-                dot.abs() < 1e-12,
-                "generatrix not normal to the contact normal: {dot}"
-            );
+            assert!(dot.abs() < 1e-12, "generatrix not normal to the contact normal: {dot}");
         }
         // Cone radius shrinks towards the apex at +x.
         assert!(g.cone.raceway_radius[k] < g.cone.raceway_radius[0]);

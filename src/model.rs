@@ -102,50 +102,28 @@ impl Parameters {
         };
         let d = b.roller_mean_diameter;
         if self.slices < 1 || self.slices > 200 {
-            return bad(
-                "slices",
-                format!("must be in [1, 200], got {}", self.slices),
-            );
+            return bad("slices", format!("must be in [1, 200], got {}", self.slices));
         }
         if !(self.tolerance.is_finite() && self.tolerance >= 1e-14 && self.tolerance <= 0.1) {
-            return bad(
-                "tolerance",
-                format!("must be in [1e-14, 0.1], got {}", self.tolerance),
-            );
+            return bad("tolerance", format!("must be in [1e-14, 0.1], got {}", self.tolerance));
         }
         if !(self.mu.is_finite() && (0.0..=2.0).contains(&self.mu)) {
             return bad("mu", format!("must be in [0, 2], got {}", self.mu));
         }
-        if !(self.pocket_clearance.is_finite()
-            && self.pocket_clearance >= 0.0
-            && self.pocket_clearance <= 0.5 * d)
-        {
+        if !(self.pocket_clearance.is_finite() && self.pocket_clearance >= 0.0 && self.pocket_clearance <= 0.5 * d) {
             return bad(
                 "cage.pocketClearance",
-                format!(
-                    "must be in [0, {:.3e}] m, got {}",
-                    0.5 * d,
-                    self.pocket_clearance
-                ),
+                format!("must be in [0, {:.3e}] m, got {}", 0.5 * d, self.pocket_clearance),
             );
         }
         if !(self.eta0.is_finite() && self.eta0 > 0.0 && self.eta0 <= 100.0) {
-            return bad(
-                "oil.eta0",
-                format!("must be in (0, 100] Pa s, got {}", self.eta0),
-            );
+            return bad("oil.eta0", format!("must be in (0, 100] Pa s, got {}", self.eta0));
         }
         if !(self.alpha.is_finite() && self.alpha >= 0.0 && self.alpha <= 1e-7) {
-            return bad(
-                "oil.alpha",
-                format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha),
-            );
+            return bad("oil.alpha", format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha));
         }
         if !(self.roughness.is_finite() && self.roughness >= 0.0 && self.roughness <= 1e-4) {
-            return bad(
-                "roughness",
-                format!("must be in [0, 1e-4] m, got {}", self.roughness),
-            );
+            return bad("roughness", format!("must be in [0, 1e-4] m, got {}", self.roughness));
         }
         if !(self.clearance.is_finite() && self.clearance.abs() <= 0.05 * d) {
             return bad(
@@ -158,51 +136,28 @@ impl Parameters {
             );
         }
         if self.outer_lobes > 64 {
-            return bad(
-                "outer.lobes",
-                format!("must be in [0, 64], got {}", self.outer_lobes),
-            );
+            return bad("outer.lobes", format!("must be in [0, 64], got {}", self.outer_lobes));
         }
-        if !(self.outer_waveform.is_finite()
-            && self.outer_waveform >= 0.0
-            && self.outer_waveform <= 0.05 * d)
-        {
+        if !(self.outer_waveform.is_finite() && self.outer_waveform >= 0.0 && self.outer_waveform <= 0.05 * d) {
             return bad(
                 "outer.waveform",
-                format!(
-                    "must be in [0, {:.3e}] m, got {}",
-                    0.05 * d,
-                    self.outer_waveform
-                ),
+                format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.outer_waveform),
             );
         }
         if !(self.cage_slip_rate.is_finite() && (0.0..=1.0).contains(&self.cage_slip_rate)) {
-            return bad(
-                "cageSlipRate",
-                format!("must be in [0, 1], got {}", self.cage_slip_rate),
-            );
+            return bad("cageSlipRate", format!("must be in [0, 1], got {}", self.cage_slip_rate));
         }
         if !self.cage_angle0.is_finite() {
-            return bad(
-                "cage.angle0",
-                format!("must be finite, got {}", self.cage_angle0),
-            );
+            return bad("cage.angle0", format!("must be finite, got {}", self.cage_angle0));
         }
         if !(self.crown_drop.is_finite() && self.crown_drop >= 0.0 && self.crown_drop <= 0.05 * d) {
             return bad(
                 "roller.crownDrop",
-                format!(
-                    "must be in [0, {:.3e}] m, got {}",
-                    0.05 * d,
-                    self.crown_drop
-                ),
+                format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.crown_drop),
             );
         }
         if !(self.flange_mu0.is_finite() && (0.0..=2.0).contains(&self.flange_mu0)) {
-            return bad(
-                "flange.mu0",
-                format!("must be in [0, 2], got {}", self.flange_mu0),
-            );
+            return bad("flange.mu0", format!("must be in [0, 2], got {}", self.flange_mu0));
         }
         for (j, dd) in self.roller_dd.iter().enumerate() {
             if !(dd.is_finite() && dd.abs() <= 0.01 * d) {
@@ -374,12 +329,7 @@ impl Outputs {
         self.qi_max = self.qi.iter().fold(0.0, |m, q| m.max(*q));
         self.qo_max = self.qo.iter().fold(0.0, |m, q| m.max(*q));
         self.qf_max = self.qf.iter().fold(0.0, |m, q| m.max(*q));
-        self.loaded_rollers = self
-            .qi
-            .iter()
-            .zip(&self.qo)
-            .filter(|(a, b)| **a > 0.0 && **b > 0.0)
-            .count() as i32;
+        self.loaded_rollers = self.qi.iter().zip(&self.qo).filter(|(a, b)| **a > 0.0 && **b > 0.0).count() as i32;
     }
 
     /// True when every output is finite.
@@ -456,9 +406,7 @@ pub enum ModelError {
 impl ModelError {
     pub fn severity(&self) -> Severity {
         match self {
-            ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => {
-                Severity::Error
-            }
+            ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => Severity::Error,
             ModelError::NoEquilibrium { .. } => Severity::Discard,
         }
     }

@@ -26,19 +26,10 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
         "logStatusDiscard",
         "Steps the model could not complete (no equilibrium within tolerance)",
     ),
-    (
-        "logStatusError",
-        "Errors: invalid inputs, parameters, calls in the wrong state",
-    ),
+    ("logStatusError", "Errors: invalid inputs, parameters, calls in the wrong state"),
     ("logStatusFatal", "Fatal errors"),
-    (
-        "logEvents",
-        "Life cycle: instantiation, initialization, reset, termination",
-    ),
-    (
-        "logSolver",
-        "Newton iterations and residual of every solve (debug)",
-    ),
+    ("logEvents", "Life cycle: instantiation, initialization, reset, termination"),
+    ("logSolver", "Newton iterations and residual of every solve (debug)"),
 ];
 
 /// Units with their SI base-unit exponents (kg, m, s, rad) and display units (name, factor).
@@ -72,14 +63,7 @@ pub fn generate(bearing: &Bearing) -> (String, String) {
     let digest = Sha256::digest(body.as_bytes());
     let h: Vec<String> = digest[..16].iter().map(|b| format!("{b:02x}")).collect();
     let h = h.concat();
-    let guid = format!(
-        "{{{}-{}-{}-{}-{}}}",
-        &h[0..8],
-        &h[8..12],
-        &h[12..16],
-        &h[16..20],
-        &h[20..32]
-    );
+    let guid = format!("{{{}-{}-{}-{}-{}}}", &h[0..8], &h[8..12], &h[12..16], &h[16..20], &h[20..32]);
     (body.replace("@GUID@", &guid), guid)
 }
 
@@ -116,20 +100,12 @@ fn render(bearing: &Bearing, guid: &str) -> String {
             }
         }
         if displays.is_empty() {
-            let _ = writeln!(
-                x,
-                r#"    <Unit name="{}"><BaseUnit{base}/></Unit>"#,
-                xml_escape(name)
-            );
+            let _ = writeln!(x, r#"    <Unit name="{}"><BaseUnit{base}/></Unit>"#, xml_escape(name));
         } else {
             let _ = writeln!(x, r#"    <Unit name="{}">"#, xml_escape(name));
             let _ = writeln!(x, r#"      <BaseUnit{base}/>"#);
             for (d, f) in displays.iter() {
-                let _ = writeln!(
-                    x,
-                    r#"      <DisplayUnit name="{d}" factor="{}"/>"#,
-                    real(*f)
-                );
+                let _ = writeln!(x, r#"      <DisplayUnit name="{d}" factor="{}"/>"#, real(*f));
             }
             let _ = writeln!(x, "    </Unit>");
         }
@@ -137,25 +113,14 @@ fn render(bearing: &Bearing, guid: &str) -> String {
     let _ = writeln!(x, "  </UnitDefinitions>");
     let _ = writeln!(x, "  <LogCategories>");
     for (name, desc) in LOG_CATEGORIES {
-        let _ = writeln!(
-            x,
-            r#"    <Category name="{name}" description="{}"/>"#,
-            xml_escape(desc)
-        );
+        let _ = writeln!(x, r#"    <Category name="{name}" description="{}"/>"#, xml_escape(desc));
     }
     let _ = writeln!(x, "  </LogCategories>");
-    let _ = writeln!(
-        x,
-        r#"  <DefaultExperiment startTime="0.0" stopTime="0.1" stepSize="0.001"/>"#
-    );
+    let _ = writeln!(x, r#"  <DefaultExperiment startTime="0.0" stopTime="0.1" stepSize="0.001"/>"#);
     let _ = writeln!(x, "  <ModelVariables>");
     let mut outputs = Vec::new();
     for (index, (vr, name, row)) in variables::expanded(z).into_iter().enumerate() {
-        let j = if row.per_roller {
-            (vr - row.vr) as usize + 1
-        } else {
-            0
-        };
+        let j = if row.per_roller { (vr - row.vr) as usize + 1 } else { 0 };
         let causality = match row.causality {
             Causality::Parameter => "parameter",
             Causality::Input => "input",
@@ -206,18 +171,14 @@ fn render(bearing: &Bearing, guid: &str) -> String {
                     let _ = write!(attrs, r#" max="{}""#, m as i64);
                 }
                 if has_start {
-                    let v = sim
-                        .get_integer(vr)
-                        .expect("start value of an integer variable");
+                    let v = sim.get_integer(vr).expect("start value of an integer variable");
                     let _ = write!(attrs, r#" start="{v}""#);
                 }
                 let _ = writeln!(x, "      <Integer{attrs}/>");
             }
             VarType::Boolean => {
                 if has_start {
-                    let v = sim
-                        .get_boolean(vr)
-                        .expect("start value of a boolean variable");
+                    let v = sim.get_boolean(vr).expect("start value of a boolean variable");
                     let _ = write!(attrs, r#" start="{v}""#);
                 }
                 let _ = writeln!(x, "      <Boolean{attrs}/>");
@@ -275,22 +236,9 @@ mod tests {
         let b = Bearing::default_preset();
         let (xml, _) = generate(&b);
         let mut sim = Simulation::new(b.clone());
-        let line = xml
-            .lines()
-            .skip_while(|l| !l.contains(r#"name="speed""#))
-            .nth(1)
-            .unwrap();
-        let start = line
-            .split("start=\"")
-            .nth(1)
-            .unwrap()
-            .split('"')
-            .next()
-            .unwrap();
+        let line = xml.lines().skip_while(|l| !l.contains(r#"name="speed""#)).nth(1).unwrap();
+        let start = line.split("start=\"").nth(1).unwrap().split('"').next().unwrap();
         let v: f64 = start.parse().unwrap();
-        assert_eq!(
-            v.to_bits(),
-            sim.get_real(variables::SPEED).unwrap().to_bits()
-        );
+        assert_eq!(v.to_bits(), sim.get_real(variables::SPEED).unwrap().to_bits());
     }
 }

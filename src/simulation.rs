@@ -10,9 +10,7 @@
 //!   consistent.
 
 use crate::bearing::Bearing;
-use crate::model::{
-    Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport,
-};
+use crate::model::{Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use crate::quasi_static::QuasiStatic;
 use crate::variables::{self as var, Causality};
 use bincode::Options as _;
@@ -183,12 +181,7 @@ impl Simulation {
         let z = self.bearing.roller_count;
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
-            Model::QuasiStatic(m) => m.solve(
-                &st.inputs,
-                st.cage_angle,
-                &mut st.warm_start,
-                &mut st.outputs,
-            )?,
+            Model::QuasiStatic(m) => m.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?,
         };
         for j in 0..z {
             st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
@@ -214,8 +207,7 @@ impl Simulation {
     }
 
     pub fn get_real(&mut self, vr: u32) -> Result<f64, AccessError> {
-        let (row, j) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Real {
             return Err(AccessError::UnknownReference(vr));
         }
@@ -286,8 +278,7 @@ impl Simulation {
     /// Set a Real parameter or input. NaN/inf inputs are stored and rejected by the next
     /// step or solve (with the input named); NaN/inf parameters are rejected here.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), AccessError> {
-        let (row, j) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Real {
             return Err(AccessError::UnknownReference(vr));
         }
@@ -340,8 +331,7 @@ impl Simulation {
     }
 
     pub fn get_integer(&mut self, vr: u32) -> Result<i32, AccessError> {
-        let (row, _) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Integer {
             return Err(AccessError::UnknownReference(vr));
         }
@@ -362,18 +352,14 @@ impl Simulation {
     }
 
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), AccessError> {
-        let (row, _) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Integer {
             return Err(AccessError::UnknownReference(vr));
         }
         if row.causality == Causality::Output {
             return Err(AccessError::NotSettable(vr));
         }
-        let (lo, hi) = (
-            row.min.unwrap_or(i32::MIN as f64),
-            row.max.unwrap_or(i32::MAX as f64),
-        );
+        let (lo, hi) = (row.min.unwrap_or(i32::MIN as f64), row.max.unwrap_or(i32::MAX as f64));
         if (value as f64) < lo || (value as f64) > hi {
             return Err(AccessError::BadValue {
                 vr,
@@ -383,27 +369,9 @@ impl Simulation {
         let p = &mut self.state.params;
         let old = p.clone();
         match row.vr {
-            var::FIDELITY => {
-                p.fidelity = if value == 0 {
-                    Fidelity::QuasiStatic
-                } else {
-                    Fidelity::Dynamic
-                }
-            }
-            var::LUBRICATION => {
-                p.lubrication = if value == 0 {
-                    Lubrication::Ehl
-                } else {
-                    Lubrication::Dry
-                }
-            }
-            var::PRELOAD => {
-                p.preload = if value == 0 {
-                    Preload::Force
-                } else {
-                    Preload::Displacement
-                }
-            }
+            var::FIDELITY => p.fidelity = if value == 0 { Fidelity::QuasiStatic } else { Fidelity::Dynamic },
+            var::LUBRICATION => p.lubrication = if value == 0 { Lubrication::Ehl } else { Lubrication::Dry },
+            var::PRELOAD => p.preload = if value == 0 { Preload::Force } else { Preload::Displacement },
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             _ => return Err(AccessError::UnknownReference(vr)),
@@ -415,8 +383,7 @@ impl Simulation {
     }
 
     pub fn get_boolean(&mut self, vr: u32) -> Result<bool, AccessError> {
-        let (row, _) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Boolean {
             return Err(AccessError::UnknownReference(vr));
         }
@@ -430,8 +397,7 @@ impl Simulation {
     }
 
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), AccessError> {
-        let (row, _) =
-            var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Boolean {
             return Err(AccessError::UnknownReference(vr));
         }
@@ -487,9 +453,7 @@ impl Simulation {
                 self.n_rollers()
             ));
         }
-        if s.state.params.roller_dd.len() != self.n_rollers()
-            || s.state.outputs.tilt.len() != self.n_rollers()
-        {
+        if s.state.params.roller_dd.len() != self.n_rollers() || s.state.outputs.tilt.len() != self.n_rollers() {
             return Err("corrupt serialized state: per-roller arrays of the wrong length".into());
         }
         let same_params = s.state.params == self.state.params;
@@ -504,9 +468,7 @@ impl Simulation {
 /// bincode with a size limit, so a hostile byte string cannot make us allocate without bound.
 fn state_codec() -> impl bincode::Options {
     use bincode::Options;
-    bincode::DefaultOptions::new()
-        .with_fixint_encoding()
-        .with_limit(1 << 26)
+    bincode::DefaultOptions::new().with_fixint_encoding().with_limit(1 << 26)
 }
 
 #[derive(Serialize)]

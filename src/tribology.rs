@@ -31,15 +31,7 @@ pub fn film_line(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_bar: f64, w: f
 
 /// Chittenden et al. central film of an elliptical contact with entrainment along the
 /// principal direction of radius `r_e` (side-leakage direction radius `r_s`), load `q`.
-pub fn film_point(
-    eta0: f64,
-    alpha: f64,
-    e_prime: f64,
-    u_e: f64,
-    r_e: f64,
-    r_s: f64,
-    q: f64,
-) -> f64 {
+pub fn film_point(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_e: f64, r_s: f64, q: f64) -> f64 {
     if u_e <= 0.0 || q <= 0.0 {
         return 0.0;
     }
@@ -102,15 +94,7 @@ pub fn traction_mu(lambda: f64, slide_roll: f64, mu_full_film: f64) -> f64 {
 /// Zhou & Hoeprich (1991) EHL rolling resistance of a line contact of length `l`:
 /// F = (4.318 / alpha) (G U)^0.658 W^0.3635 R l with G = alpha E', U = eta0 u/(E' R),
 /// W = q/(E' R l).
-pub fn rolling_resistance(
-    eta0: f64,
-    alpha: f64,
-    e_prime: f64,
-    u: f64,
-    r_bar: f64,
-    q: f64,
-    l: f64,
-) -> f64 {
+pub fn rolling_resistance(eta0: f64, alpha: f64, e_prime: f64, u: f64, r_bar: f64, q: f64, l: f64) -> f64 {
     if u <= 0.0 || q <= 0.0 || alpha <= 0.0 {
         return 0.0;
     }
@@ -182,9 +166,7 @@ mod tests {
         assert!(boundary_mu(0.0).abs() < 1e-15);
         assert!((boundary_mu(1.0) - 0.1).abs() < 1e-6);
         // peak of the boundary curve near s = 0.0 .. 0.02
-        let peak = (0..1000)
-            .map(|i| boundary_mu(i as f64 * 1e-4))
-            .fold(0.0, f64::max);
+        let peak = (0..1000).map(|i| boundary_mu(i as f64 * 1e-4)).fold(0.0, f64::max);
         assert!(peak > 0.1 && peak < 0.2, "peak {peak}");
     }
 
@@ -200,12 +182,7 @@ mod tests {
     fn film_thickness_hand_value_and_exponents() {
         let (eta0, alpha, e, u, r, w) = (0.033, 1.28e-8, 2.18e11, 10.0, 0.01, 1e6);
         let h = film_line(eta0, alpha, e, u, r, w);
-        let hand = 2.922
-            * (eta0 * u).powf(0.692)
-            * alpha.powf(0.470)
-            * r.powf(0.474)
-            * e.powf(-0.056)
-            * w.powf(-0.166);
+        let hand = 2.922 * (eta0 * u).powf(0.692) * alpha.powf(0.470) * r.powf(0.474) * e.powf(-0.056) * w.powf(-0.166);
         assert!((h - hand).abs() < 1e-12 * hand, "{h} vs {hand}");
         assert!(h > 1e-7 && h < 5e-6, "h = {h}");
         let h2 = film_line(eta0, alpha, e, 2.0 * u, r, w);
@@ -245,11 +222,7 @@ mod tests {
         let (a, b, ph) = (1e-3, 5e-4, 1e9);
         let q = 2.0 / 3.0 * PI * a * b * ph;
         let f = flange_viscous_traction(0.033, 10.0, 1e-12, a, b, ph);
-        assert!(
-            (f - LIMITING_SHEAR * q).abs() < 1e-3 * f,
-            "{f} vs {}",
-            LIMITING_SHEAR * q
-        );
+        assert!((f - LIMITING_SHEAR * q).abs() < 1e-3 * f, "{f} vs {}", LIMITING_SHEAR * q);
     }
 
     #[test]

@@ -199,10 +199,7 @@ mod tests {
             "roller[17].Nos",
             "roller[17].Nfs",
         ] {
-            assert!(
-                find(name, 17).is_some(),
-                "{name} missing from the variable table"
-            );
+            assert!(find(name, 17).is_some(), "{name} missing from the variable table");
         }
     }
 }

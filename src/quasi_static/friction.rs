@@ -62,13 +62,7 @@ pub struct FrictionModel {
 }
 
 impl FrictionModel {
-    pub fn new(
-        _b: &Bearing,
-        p: &Parameters,
-        g: &Geometry,
-        cage_ratio: f64,
-        spin_ratio: f64,
-    ) -> FrictionModel {
+    pub fn new(_b: &Bearing, p: &Parameters, g: &Geometry, cage_ratio: f64, spin_ratio: f64) -> FrictionModel {
         let cone = (0..g.slices)
             .map(|k| {
                 let ring = (1.0 - cage_ratio) * g.cone.raceway_radius[k];
@@ -88,10 +82,7 @@ impl FrictionModel {
                 let ring = (1.0 - cage_ratio) * f.rib_radius;
                 let roller = spin_ratio * f.offset;
                 let rel = [f.point[0] - g.center[0], f.point[1] - g.center[1]];
-                (
-                    Kinematics::new(roller, ring),
-                    rel[0] * g.axis[0] + rel[1] * g.axis[1],
-                )
+                (Kinematics::new(roller, ring), rel[0] * g.axis[0] + rel[1] * g.axis[1])
             }
             None => (Kinematics::default(), 0.0),
         };
@@ -111,15 +102,7 @@ impl FrictionModel {
     /// Raceway slice traction: returns (tangential force on the roller, torque contribution
     /// per unit sign of speed) for one slice.
     #[inline]
-    fn slice(
-        &self,
-        g: &Geometry,
-        line_r_bar: f64,
-        kin: Kinematics,
-        q: f64,
-        speed: f64,
-        lubrication: Lubrication,
-    ) -> (f64, f64) {
+    fn slice(&self, g: &Geometry, line_r_bar: f64, kin: Kinematics, q: f64, speed: f64, lubrication: Lubrication) -> (f64, f64) {
         let v_s = speed * kin.slide;
         match lubrication {
             Lubrication::Dry => {
@@ -132,22 +115,13 @@ impl FrictionModel {
                 let w = q / l;
                 let u_e = speed.abs() * kin.entrain;
                 let h = tr::film_line(self.eta0, self.alpha, g.e_prime, u_e, line_r_bar, w);
-                let lambda = if self.sigma > 0.0 {
-                    h / self.sigma
-                } else {
-                    f64::INFINITY
-                };
-                let slide_roll = if kin.entrain > 0.0 {
-                    kin.slide.abs() / kin.entrain
-                } else {
-                    0.0
-                };
+                let lambda = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
+                let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 0.0 };
                 let (b, _) = line_contact_half_width(w, line_r_bar, g.e_prime);
                 let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
                 let mu_fl = tr::full_film_mu(self.eta0, v_s, h, p_mean).abs();
                 let mu = tr::traction_mu(lambda, slide_roll, mu_fl);
-                let f_roll =
-                    tr::rolling_resistance(self.eta0, self.alpha, g.e_prime, u_e, line_r_bar, q, l);
+                let f_roll = tr::rolling_resistance(self.eta0, self.alpha, g.e_prime, u_e, line_r_bar, q, l);
                 let dir = if v_s > 0.0 {
                     1.0
                 } else if v_s < 0.0 {
@@ -155,10 +129,7 @@ impl FrictionModel {
                 } else {
                     0.0
                 };
-                (
-                    -mu * q * dir,
-                    mu * q * kin.slide.abs() + f_roll * kin.entrain,
-                )
+                (-mu * q * dir, mu * q * kin.slide.abs() + f_roll * kin.entrain)
             }
         }
     }
@@ -184,20 +155,12 @@ impl FrictionModel {
             let (mut nis, mut nos) = (0.0, 0.0);
             for k in 0..g.slices {
                 if cone[k] > 0.0 {
-                    let (ft, t) = self.slice(
-                        g,
-                        g.cone.r_bar[k],
-                        self.cone[k],
-                        cone[k],
-                        speed,
-                        lubrication,
-                    );
+                    let (ft, t) = self.slice(g, g.cone.r_bar[k], self.cone[k], cone[k], speed, lubrication);
                     parts.raceway += t;
                     nis -= g.slice_s[k] * ft;
                 }
                 if cup[k] > 0.0 {
-                    let (ft, t) =
-                        self.slice(g, g.cup.r_bar[k], self.cup[k], cup[k], speed, lubrication);
+                    let (ft, t) = self.slice(g, g.cup.r_bar[k], self.cup[k], cup[k], speed, lubrication);
                     parts.raceway += t;
                     nos -= g.slice_s[k] * ft;
                 }
@@ -215,14 +178,8 @@ impl FrictionModel {
                     Lubrication::Ehl => {
                         let u_e = speed.abs() * kin.entrain;
                         let (a, b, p_h) = f.hertz.ellipse(qf);
-                        let h = tr::film_point(
-                            self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf,
-                        );
-                        let film_ratio = if self.sigma > 0.0 {
-                            h / self.sigma
-                        } else {
-                            f64::INFINITY
-                        };
+                        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
+                        let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
                         let f_total = qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)
                             + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h);
                         let dir = if v_s > 0.0 {

@@ -248,15 +248,7 @@ impl QuasiStatic {
     }
 
     /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`.
-    fn eval_roller(
-        &self,
-        j: usize,
-        cone: [f64; 2],
-        q: [f64; 3],
-        fc: f64,
-        m_fc: f64,
-        m_req: f64,
-    ) -> RollerEval {
+    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64) -> RollerEval {
         let g = &self.geometry;
         let st = &self.setup[j];
         let ls = self.ls;
@@ -266,15 +258,7 @@ impl QuasiStatic {
         // Cone: delta = (dx - a) n_x + (dr - rho) n_r + gamma chi - theta lever + gap - crown
         let ni = g.cone.normal;
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
-        let si = Self::line_sums(
-            &g.cone,
-            &g.crown,
-            base_i,
-            theta,
-            ls,
-            Some(&self.cone_chi),
-            st.gamma,
-        );
+        let si = Self::line_sums(&g.cone, &g.crown, base_i, theta, ls, Some(&self.cone_chi), st.gamma);
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
@@ -311,9 +295,7 @@ impl QuasiStatic {
 
         if let Some(f) = &g.flange {
             let n = f.normal;
-            let delta =
-                (cone[0] - q[0]) * n[0] + (cone[1] - q[1]) * n[1] + st.gamma * self.flange_chi
-                    - theta * f.lever;
+            let delta = (cone[0] - q[0]) * n[0] + (cone[1] - q[1]) * n[1] + st.gamma * self.flange_chi - theta * f.lever;
             let (qf, kf) = f.hertz.load(delta);
             if qf > 0.0 {
                 let lv = f.lever / ls;
@@ -344,25 +326,12 @@ impl QuasiStatic {
 
     /// Evaluate every roller at `x`; returns the scaled residual max-norm, the merit
     /// (sum of squares) and the reference force.
-    fn evaluate(
-        &mut self,
-        x: &[f64],
-        inputs: &Inputs,
-        fc: f64,
-        m_fc: f64,
-        m_req: f64,
-    ) -> (f64, f64, f64, Vector3<f64>) {
+    fn evaluate(&mut self, x: &[f64], inputs: &Inputs, fc: f64, m_fc: f64, m_req: f64) -> (f64, f64, f64, Vector3<f64>) {
         let z = self.geometry.z;
         let mut ring = Vector3::new(inputs.fx, inputs.fy, inputs.fz);
         let mut max_r: f64 = 0.0;
         let mut merit = 0.0;
-        let mut f_ref: f64 = inputs
-            .fx
-            .abs()
-            .max(inputs.fy.abs())
-            .max(inputs.fz.abs())
-            .max(fc.abs())
-            .max(1.0);
+        let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
         for j in 0..z {
             let st = self.setup[j];
             let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
@@ -374,11 +343,7 @@ impl QuasiStatic {
             for c in 0..3 {
                 let v = e.r[c];
                 // NaN must never pass for convergence: it makes the residual infinite.
-                max_r = if v.is_finite() {
-                    max_r.max(v.abs())
-                } else {
-                    f64::INFINITY
-                };
+                max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
                 merit += v * v;
             }
             f_ref = f_ref.max(e.qi).max(e.qo);
@@ -390,11 +355,7 @@ impl QuasiStatic {
         }
         for c in 0..3 {
             let v = ring[c];
-            max_r = if v.is_finite() {
-                max_r.max(v.abs())
-            } else {
-                f64::INFINITY
-            };
+            max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
             merit += v * v;
         }
         if !merit.is_finite() {
@@ -492,15 +453,9 @@ impl QuasiStatic {
             let (qi, qf) = (sol[0].max(0.0), sol[1].max(0.0));
             let di = g.cone.law.deflection(mid, qi / s);
             let dol = g.cup.law.deflection(mid, qo / s);
-            let dfl = if qf > 0.0 {
-                (qf / f.hertz.stiffness).powf(2.0 / 3.0)
-            } else {
-                0.0
-            };
+            let dfl = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
             // dol = -(a no_x + rho no_r); di = (dx - a) ni_x - rho ni_r; dfl = (dx - a) nf_x - rho nf_r
-            let mm = Matrix3::new(
-                -no[0], -no[1], 0.0, -ni[0], -ni[1], ni[0], -nf[0], -nf[1], nf[0],
-            );
+            let mm = Matrix3::new(-no[0], -no[1], 0.0, -ni[0], -ni[1], ni[0], -nf[0], -nf[1], nf[0]);
             let v = mm.try_inverse()? * Vector3::new(dol, di, dfl);
             Some([v[0], v[1], v[2]])
         };
@@ -509,10 +464,7 @@ impl QuasiStatic {
             let tan_o = g.cup_angle.tan();
             let sol = match self.params.preload {
                 Preload::Force => {
-                    let fa = (inputs.fx.max(0.0) + 0.0 * fr)
-                        .max(1.2 * fr * tan_o)
-                        .max(1.0)
-                        * load_scale;
+                    let fa = (inputs.fx.max(0.0) + 0.0 * fr).max(1.2 * fr * tan_o).max(1.0) * load_scale;
                     place(fa)
                 }
                 Preload::Displacement => {
@@ -557,13 +509,7 @@ impl QuasiStatic {
 
     /// Solve the equilibrium for `inputs` with roller 1 at `cage_angle`. `warm` holds the
     /// unknowns of the previous solve (replaced by the solution); `out` receives everything.
-    pub fn solve(
-        &mut self,
-        inputs: &Inputs,
-        cage_angle: f64,
-        warm: &mut Vec<f64>,
-        out: &mut Outputs,
-    ) -> Result<SolveReport, ModelError> {
+    pub fn solve(&mut self, inputs: &Inputs, cage_angle: f64, warm: &mut Vec<f64>, out: &mut Outputs) -> Result<SolveReport, ModelError> {
         self.prepare(inputs, cage_angle);
         let n = self.n_unknowns();
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
@@ -712,13 +658,7 @@ impl QuasiStatic {
         Err(self.explain_failure(x, inputs, max_r / f_ref, iterations))
     }
 
-    fn explain_failure(
-        &self,
-        x: &[f64],
-        inputs: &Inputs,
-        residual: f64,
-        iterations: u32,
-    ) -> ModelError {
+    fn explain_failure(&self, x: &[f64], inputs: &Inputs, residual: f64, iterations: u32) -> ModelError {
         let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
         let g = &self.geometry;
         let limit = 0.05 * 2.0 * g.mean_radius;
@@ -727,10 +667,7 @@ impl QuasiStatic {
             "Newton solver stopped after {iterations} iterations with relative residual {residual:.3e} (Fx = {:.6} N, Fr = {:.6} N, speed = {:.6} rad/s)",
             inputs.fx, fr, inputs.speed
         );
-        if g.axial
-            && self.params.preload == Preload::Force
-            && inputs.fx <= 0.5 * fr * g.cup_angle.tan()
-        {
+        if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.5 * fr * g.cup_angle.tan() {
             message.push_str(&format!(
                 "; a single tapered roller bearing needs an axial force of the order of Fr tan(cup angle) = {:.1} N to carry a radial load, and Fx = {:.1} N does not seat it",
                 fr * g.cup_angle.tan(),
@@ -742,23 +679,13 @@ impl QuasiStatic {
                 limit
             ));
         }
-        if g.axial
-            && self.params.preload == Preload::Displacement
-            && inputs.axial_displacement <= 0.0
-            && fr > 0.0
-        {
+        if g.axial && self.params.preload == Preload::Displacement && inputs.axial_displacement <= 0.0 && fr > 0.0 {
             message.push_str("; with axial displacement preload <= 0 the cone is not seated");
         }
         ModelError::NoEquilibrium { message }
     }
 
-    fn write_outputs(
-        &mut self,
-        x: &[f64],
-        inputs: &Inputs,
-        report: SolveReport,
-        out: &mut Outputs,
-    ) {
+    fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
         let z = self.geometry.z;
         let mut my = 0.0;
         let mut mz = 0.0;
@@ -793,9 +720,7 @@ impl QuasiStatic {
         let lubrication = self.params.lubrication;
         let mut cone = std::mem::take(&mut self.cone_buf);
         let mut cup = std::mem::take(&mut self.cup_buf);
-        let torque = self
-            .friction
-            .evaluate(self, x, inputs, lubrication, out, &mut cone, &mut cup);
+        let torque = self.friction.evaluate(self, x, inputs, lubrication, out, &mut cone, &mut cup);
         self.cone_buf = cone;
         self.cup_buf = cup;
         out.friction_torque_raceway = torque.raceway;

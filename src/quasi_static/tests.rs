@@ -58,11 +58,7 @@ fn newton_converges_below_1e9_relative_on_every_preset() {
     for name in ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"] {
         let (b, p, i) = setup(name);
         let s = solve(&b, &p, &i);
-        assert!(
-            s.report.residual <= 1e-9,
-            "{name}: residual {}",
-            s.report.residual
-        );
+        assert!(s.report.residual <= 1e-9, "{name}: residual {}", s.report.residual);
         assert!(s.out.all_finite(), "{name}");
     }
 }
@@ -75,24 +71,12 @@ fn pure_axial_load_is_carried_by_the_cup_and_shared_equally() {
         i.fz = 0.0;
         let s = solve(&b, &p, &i);
         let f = cup_force(&s);
-        assert!(
-            (f[0] - i.fx).abs() <= 1e-9 * i.fx,
-            "{name}: cup axial {} vs Fx {}",
-            f[0],
-            i.fx
-        );
+        assert!((f[0] - i.fx).abs() <= 1e-9 * i.fx, "{name}: cup axial {} vs Fx {}", f[0], i.fx);
         assert!((s.out.reaction_fx - i.fx).abs() <= 1e-9 * i.fx);
         let q0 = s.out.qo[0];
         for j in 0..b.roller_count {
-            for (a, bq) in [
-                (s.out.qo[j], q0),
-                (s.out.qi[j], s.out.qi[0]),
-                (s.out.qf[j], s.out.qf[0]),
-            ] {
-                assert!(
-                    (a - bq).abs() <= 1e-9 * q0,
-                    "{name}: roller {j} differs: {a} vs {bq}"
-                );
+            for (a, bq) in [(s.out.qo[j], q0), (s.out.qi[j], s.out.qi[0]), (s.out.qf[j], s.out.qf[0])] {
+                assert!((a - bq).abs() <= 1e-9 * q0, "{name}: roller {j} differs: {a} vs {bq}");
             }
         }
         // Classical: Qo = Fa / (Z sin a_o) exactly, since the cup carries Fa.
@@ -117,16 +101,8 @@ fn roller_force_triangle_matches_harris() {
     let qo = s.out.qo[0];
     let qi = qo * (ao + af).sin() / (ai + af).sin();
     let qf = qo * (ao - ai).sin() / (ai + af).sin();
-    assert!(
-        (s.out.qi[0] - qi).abs() < 1e-8 * qo,
-        "{} vs {qi}",
-        s.out.qi[0]
-    );
-    assert!(
-        (s.out.qf[0] - qf).abs() < 1e-8 * qo,
-        "{} vs {qf}",
-        s.out.qf[0]
-    );
+    assert!((s.out.qi[0] - qi).abs() < 1e-8 * qo, "{} vs {qi}", s.out.qi[0]);
+    assert!((s.out.qf[0] - qf).abs() < 1e-8 * qo, "{} vs {qf}", s.out.qf[0]);
 }
 
 #[test]
@@ -226,10 +202,7 @@ fn combined_load_matches_the_rigid_ring_load_zone_integrals() {
             psi
         };
         if psi < psi_l - 0.1 {
-            assert!(
-                s.out.qo[j] > 0.0,
-                "roller {j} at {psi:.2} rad inside the load zone is unloaded"
-            );
+            assert!(s.out.qo[j] > 0.0, "roller {j} at {psi:.2} rad inside the load zone is unloaded");
         }
         if psi > psi_l + 0.1 {
             assert!(
@@ -248,10 +221,7 @@ fn radial_load_distribution_is_mirror_symmetric_about_the_load_line() {
     let z = b.roller_count;
     for j in 1..z {
         let (a, c) = (s.out.qo[j], s.out.qo[z - j]);
-        assert!(
-            (a - c).abs() <= 1e-7 * s.out.qo_max,
-            "roller {j}: {a} vs {c}"
-        );
+        assert!((a - c).abs() <= 1e-7 * s.out.qo_max, "roller {j}: {a} vs {c}");
         assert!((s.out.tilt[j] - s.out.tilt[z - j]).abs() <= 1e-7 * s.out.tilt_max.max(1e-12));
     }
     assert!(s.out.cone_z.abs() < 1e-9 * s.out.cone_y.abs());
@@ -276,9 +246,7 @@ fn displacement_and_force_preload_agree() {
         i.fx
     );
     assert!((disp.out.qo_max - force.out.qo_max).abs() < 1e-6 * force.out.qo_max);
-    assert!(
-        (disp.out.reaction_my - force.out.reaction_my).abs() < 1e-6 * force.out.reaction_my.abs()
-    );
+    assert!((disp.out.reaction_my - force.out.reaction_my).abs() < 1e-6 * force.out.reaction_my.abs());
     // More axial displacement, more axial force.
     id.axial_displacement *= 1.1;
     assert!(solve(&b, &pd, &id).out.reaction_fx > 1.1 * i.fx);
@@ -293,9 +261,7 @@ fn clearance_shifts_the_cone_but_not_the_loads_under_axial_force() {
     let with = solve(&b, &pc, &i);
     // The cup is 10 um further out radially: the cone travels (c/2)/tan(a_o) further.
     let expect = 0.5 * pc.clearance / b.cup_angle.tan();
-    assert!(
-        ((with.out.cone_x - base.out.cone_x) - expect).abs() < 1e-9 * expect.max(base.out.cone_x)
-    );
+    assert!(((with.out.cone_x - base.out.cone_x) - expect).abs() < 1e-9 * expect.max(base.out.cone_x));
     assert!((with.out.qo_max - base.out.qo_max).abs() < 1e-9 * base.out.qo_max);
 }
 
@@ -361,10 +327,7 @@ fn cylindrical_bearing_balances_centrifugal_force_and_has_three_preload_zones() 
             s.out.qo[k]
         );
     }
-    assert!(
-        s.out.qi[0] > 0.0,
-        "roller on a lobe's low point must be preloaded"
-    );
+    assert!(s.out.qi[0] > 0.0, "roller on a lobe's low point must be preloaded");
     // Double pressed (half a pitch away): fewer rollers touch the cone than single pressed.
     let single = solve_at(&b, &p, &i, 0.0).out.loaded_rollers;
     let double = solve_at(&b, &p, &i, std::f64::consts::PI / b.roller_count as f64)
@@ -391,11 +354,7 @@ fn warm_start_reproduces_the_solution_in_at_most_one_iteration() {
     let mut s = solve(&b, &p, &i);
     let mut out2 = Outputs::new(b.roller_count);
     let r = s.qs.solve(&i, 0.0, &mut s.x, &mut out2).unwrap();
-    assert!(
-        r.iterations <= 1,
-        "{} iterations from the converged point",
-        r.iterations
-    );
+    assert!(r.iterations <= 1, "{} iterations from the converged point", r.iterations);
     assert!((out2.qo_max - s.out.qo_max).abs() < 1e-9 * s.out.qo_max);
 }
 
@@ -405,15 +364,9 @@ fn friction_power_equals_torque_times_speed_and_flips_with_speed() {
         let (b, p, mut i) = setup(name);
         let fwd = solve(&b, &p, &i).out;
         assert!(fwd.friction_torque > 0.0, "{name}: {}", fwd.friction_torque);
+        assert!((fwd.power_loss - fwd.friction_torque * i.speed).abs() <= 1e-12 * fwd.power_loss.abs());
         assert!(
-            (fwd.power_loss - fwd.friction_torque * i.speed).abs() <= 1e-12 * fwd.power_loss.abs()
-        );
-        assert!(
-            (fwd.friction_torque
-                - fwd.friction_torque_raceway
-                - fwd.friction_torque_flange
-                - fwd.friction_torque_cage)
-                .abs()
+            (fwd.friction_torque - fwd.friction_torque_raceway - fwd.friction_torque_flange - fwd.friction_torque_cage).abs()
                 < 1e-12 * fwd.friction_torque
         );
         i.speed = -i.speed;
@@ -447,10 +400,7 @@ fn ehl_torque_grows_with_viscosity_and_dry_torque_with_mu() {
     let d1 = solve(&b, &p, &i).out.friction_torque;
     p.mu = 0.2;
     let d2 = solve(&b, &p, &i).out.friction_torque;
-    assert!(
-        (d2 / d1 - 4.0).abs() < 1e-6,
-        "dry torque not proportional to mu: {d1} {d2}"
-    );
+    assert!((d2 / d1 - 4.0).abs() < 1e-6, "dry torque not proportional to mu: {d1} {d2}");
 }
 
 #[test]
@@ -475,9 +425,7 @@ fn single_bearing_without_axial_force_under_radial_load_is_reported() {
     let mut qs = QuasiStatic::new(&b, &p).unwrap();
     let mut out = Outputs::new(b.roller_count);
     let mut x = Vec::new();
-    let e = qs
-        .solve(&i, 0.0, &mut x, &mut out)
-        .expect_err("no equilibrium");
+    let e = qs.solve(&i, 0.0, &mut x, &mut out).expect_err("no equilibrium");
     let msg = e.to_string();
     assert!(msg.contains("axial force"), "{msg}");
     assert!(out.all_finite());
