@@ -590,7 +590,7 @@ impl Instance {
             self.machine = Machine::Alive(State::Error);
             return FMI2_ERROR;
         }
-        if !((t - now).abs() <= noise(now)) {
+        if !t.is_finite() || (t - now).abs() > noise(now) {
             self.log.error(format_args!(
                 "{F}: currentCommunicationPoint = {t} does not match the FMU's time {now}"
             ));
@@ -611,7 +611,7 @@ impl Instance {
             }
         }
         let step = end - now;
-        if !(step > 0.0) {
+        if step <= 0.0 || !step.is_finite() {
             self.log.error(format_args!(
                 "{F}: nothing to step: from {now} to {end} (stop time {:?})",
                 self.clock.stop
