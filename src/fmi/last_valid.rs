@@ -87,7 +87,7 @@ mod tests {
         let z = bearing.roller_count;
         let mut sim = Simulation::new(bearing);
         sim.set_real(var::FY, 5000.0).unwrap();
-        sim.set_real(var::XI, 1e-3).unwrap();
+        sim.set_real(var::XI, 5e-5).unwrap();
         sim.initialize(0.0).unwrap();
         sim.do_step(0.0, 1e-3).unwrap();
         for (vr, name, row) in var::expanded(z) {
