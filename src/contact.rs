@@ -56,11 +56,7 @@ impl LineLaw {
         }
         match self {
             LineLaw::Johnson { c, eight_r } => johnson(*c, eight_r[k], delta),
-            LineLaw::Palmgren { k: kp } => {
-                let d19 = delta.powf(1.0 / 9.0);
-                let q = kp * delta * d19;
-                (q, kp * (10.0 / 9.0) * d19, false)
-            }
+            LineLaw::Palmgren { k: kp } => palmgren(*kp, delta),
         }
     }
 
@@ -105,8 +101,17 @@ impl LineLaw {
     }
 }
 
+/// Palmgren slice law q = k delta^(10/9) and its derivative (delta > 0).
 #[inline]
-fn johnson(c: f64, eight_r: f64, delta: f64) -> (f64, f64, bool) {
+pub fn palmgren(k: f64, delta: f64) -> (f64, f64, bool) {
+    let d19 = delta.powf(1.0 / 9.0);
+    (k * delta * d19, k * (10.0 / 9.0) * d19, false)
+}
+
+/// Johnson slice law q = c delta / (ln(8R/delta) - 1) and its derivative (delta > 0),
+/// continued linearly beyond its validity range (flagged).
+#[inline]
+pub fn johnson(c: f64, eight_r: f64, delta: f64) -> (f64, f64, bool) {
     let lg = (eight_r / delta).ln();
     let den = lg - 1.0;
     if den >= JOHNSON_LOG_FLOOR {

@@ -206,13 +206,20 @@ impl Simulation {
         var::lookup(vr, self.n_rollers()).map(|(v, _)| v.causality)
     }
 
+    /// Real value of `vr`; outputs are re-solved first if inputs changed (direct feedthrough).
     pub fn get_real(&mut self, vr: u32) -> Result<f64, AccessError> {
+        if self.causality(vr) == Some(Causality::Output) {
+            self.solve_if_dirty().map_err(AccessError::Model)?;
+        }
+        self.last_real(vr)
+    }
+
+    /// Real value of `vr` without solving: parameters and inputs as set, outputs of the last
+    /// successful solve.
+    pub fn last_real(&self, vr: u32) -> Result<f64, AccessError> {
         let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Real {
             return Err(AccessError::UnknownReference(vr));
-        }
-        if row.causality == Causality::Output {
-            self.solve_if_dirty().map_err(AccessError::Model)?;
         }
         let p = &self.state.params;
         let i = &self.state.inputs;
@@ -321,6 +328,10 @@ impl Simulation {
         };
         if slot.to_bits() != value.to_bits() {
             *slot = value;
+            if row.vr == var::CAGE_ANGLE0 {
+                // Parameters are set before initialization: the cage starts there.
+                self.state.cage_angle = value;
+            }
             if row.causality == Causality::Parameter {
                 self.parameter_changed();
             } else {
@@ -330,13 +341,19 @@ impl Simulation {
         Ok(())
     }
 
+    /// Integer value of `vr`; outputs are re-solved first if inputs changed.
     pub fn get_integer(&mut self, vr: u32) -> Result<i32, AccessError> {
+        if self.causality(vr) == Some(Causality::Output) {
+            self.solve_if_dirty().map_err(AccessError::Model)?;
+        }
+        self.last_integer(vr)
+    }
+
+    /// Integer value of `vr` without solving.
+    pub fn last_integer(&self, vr: u32) -> Result<i32, AccessError> {
         let (row, _) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
         if row.ty != var::VarType::Integer {
             return Err(AccessError::UnknownReference(vr));
-        }
-        if row.causality == Causality::Output {
-            self.solve_if_dirty().map_err(AccessError::Model)?;
         }
         let p = &self.state.params;
         Ok(match row.vr {

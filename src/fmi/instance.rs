@@ -4,7 +4,6 @@
 //!
 //! Hot path (doStep, get/set with logging off): no formatting, no allocation here.
 
-use super::last_valid;
 use super::logging::{Category, Logger};
 use super::machine::{mask, Machine, State};
 use super::resources;
@@ -419,9 +418,9 @@ impl Instance {
                     Err(e) => return self.access_error(F, &e, "Real"),
                 }
             }
-            match last_valid::real(&mut self.sim, vr) {
-                Some(v) => *value = v,
-                None => return self.unknown(F, vr, "Real"),
+            match self.sim.last_real(vr) {
+                Ok(v) => *value = v,
+                Err(_) => return self.unknown(F, vr, "Real"),
             }
         }
         status
@@ -454,9 +453,9 @@ impl Instance {
                     Err(e) => return self.access_error(F, &e, "Integer"),
                 }
             }
-            match last_valid::integer(&mut self.sim, vr) {
-                Some(v) => *value = v,
-                None => return self.unknown(F, vr, "Integer"),
+            match self.sim.last_integer(vr) {
+                Ok(v) => *value = v,
+                Err(_) => return self.unknown(F, vr, "Integer"),
             }
         }
         status

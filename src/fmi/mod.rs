@@ -11,12 +11,10 @@
 //! - [`resources`]: the bearing an instance simulates (`resources/bearing.json`)
 //! - [`instance`]: one instance; every FMI function as a method
 //! - [`snapshot`]: FMU states and their serialization
-//! - [`last_valid`]: outputs of the last successful solve, read without solving
 //! - [`exports`]: the 34 `extern "C"` functions
 
 pub mod exports;
 pub mod instance;
-pub mod last_valid;
 pub mod logging;
 pub mod machine;
 pub mod resources;

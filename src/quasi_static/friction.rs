@@ -2,24 +2,37 @@
 //! converged contact loads and the epicyclic kinematics with cage slip (outer-raceway
 //! control [L22]: pure rolling on the cup at mid-roller, sliding S_c omega_i R_i on the cone).
 //!
-//! Power is summed over every loaded slice and the flange: rolling resistance times the
-//! rolling (entrainment) speed plus traction times the sliding speed. The torque needed to
-//! drive the cone is power / speed; computing it from speed ratios keeps it finite and
-//! continuous through zero speed. The traction forces also give each roller's skew
-//! moments from cone, cup and flange (the tangential force at axial station s about the
-//! roller centre: N = -s F_t).
+//! Traction is evaluated per contact (cone line, cup line, flange), as in Harris and [L22]:
+//! film thickness from the contact's line load over its loaded length, film ratio, one
+//! traction coefficient from the load-weighted mean slide-to-roll ratio. The slice-level
+//! sliding speeds still enter exactly through two sums the solver accumulates in its slice
+//! loop at no extra cost: sum q |v_s| (sliding power) and sum q s sgn(v_s) (skew moment of
+//! the traction forces, N = -s F_t about the roller centre).
 //!
-//! EHL (`lubrication` = 0): film, film ratio, boundary/mixed/full-film traction per slice,
-//! Zhou-Hoeprich rolling resistance; flange: asperity share mu0 exp(-1.8 Lambda^1.2) plus
-//! viscous film traction over the Hertz ellipse. Dry (`lubrication` = 1): one Coulomb
-//! coefficient, smoothly regularised, at raceways and flange [D19].
+//! Power = rolling resistance x rolling speed + traction x sliding speed, summed over all
+//! contacts; the torque needed to drive the cone is power / speed, computed from speed
+//! ratios so it stays finite and continuous through zero speed.
+//!
+//! EHL (`lubrication` = 0): Hamrock film, boundary/mixed/full-film traction of [W25],
+//! Zhou-Hoeprich rolling resistance; flange: asperity share mu0 exp(-1.8 Lambda^1.2) of the
+//! load plus the viscous film traction over the Hertz ellipse. Dry (`lubrication` = 1): one
+//! Coulomb coefficient, smoothly regularised, at raceways and flange [D19].
 
-use super::QuasiStatic;
+use super::{LineSums, RollerEval};
 use crate::bearing::Bearing;
 use crate::contact::line_contact_half_width;
-use crate::geometry::Geometry;
+use crate::geometry::{ContactLine, Geometry};
 use crate::model::{Inputs, Lubrication, Outputs, Parameters};
 use crate::tribology as tr;
+
+/// Per-slice weights the solver multiplies with the slice loads.
+#[derive(Debug, Clone)]
+pub struct SliceWeights {
+    /// |sliding speed| per unit cone speed.
+    pub slide: Vec<f64>,
+    /// Axial station times the sign of the sliding speed.
+    pub skew: Vec<f64>,
+}
 
 /// Kinematics of one contact point per unit cone speed, in the cage frame.
 #[derive(Debug, Clone, Copy, Default)]
@@ -46,14 +59,26 @@ pub struct TorqueParts {
     pub flange: f64,
 }
 
-/// Precomputed per-slice kinematics and oil data.
+/// Per-contact data of one raceway line.
+#[derive(Debug, Clone)]
+struct LineFriction {
+    /// Kinematics at mid-roller.
+    mid: Kinematics,
+    /// Equivalent radius at mid-roller.
+    r_bar: f64,
+}
+
+/// Precomputed kinematics and oil data.
 #[derive(Debug, Clone)]
 pub struct FrictionModel {
-    cone: Vec<Kinematics>,
-    cup: Vec<Kinematics>,
+    pub cone_weights: SliceWeights,
+    pub cup_weights: SliceWeights,
+    cone: LineFriction,
+    cup: LineFriction,
     flange: Kinematics,
     /// Axial station of the flange contact along the roller axis (for its skew moment).
     flange_s: f64,
+    slice_len: f64,
     eta0: f64,
     alpha: f64,
     sigma: f64,
@@ -63,20 +88,32 @@ pub struct FrictionModel {
 
 impl FrictionModel {
     pub fn new(_b: &Bearing, p: &Parameters, g: &Geometry, cage_ratio: f64, spin_ratio: f64) -> FrictionModel {
-        let cone = (0..g.slices)
-            .map(|k| {
-                let ring = (1.0 - cage_ratio) * g.cone.raceway_radius[k];
-                let roller = -spin_ratio * g.slice_radius[k];
-                Kinematics::new(roller, ring)
-            })
-            .collect();
-        let cup = (0..g.slices)
-            .map(|k| {
-                let ring = -cage_ratio * g.cup.raceway_radius[k];
-                let roller = spin_ratio * g.slice_radius[k];
-                Kinematics::new(roller, ring)
-            })
-            .collect();
+        // Cone surface moves at (1 - c) r in the cage frame; the roller surface facing it at
+        // -w R (w < 0 is the roller spin about its axis from the large to the small end).
+        let cone_kin = |k: usize| Kinematics::new(-spin_ratio * g.slice_radius[k], (1.0 - cage_ratio) * g.cone.raceway_radius[k]);
+        // The cup is fixed: -c r in the cage frame; the roller surface facing it at w R.
+        let cup_kin = |k: usize| Kinematics::new(spin_ratio * g.slice_radius[k], -cage_ratio * g.cup.raceway_radius[k]);
+        let weights = |kin: &dyn Fn(usize) -> Kinematics| SliceWeights {
+            slide: (0..g.slices).map(|k| kin(k).slide.abs()).collect(),
+            skew: (0..g.slices).map(|k| g.slice_s[k] * kin(k).slide.signum()).collect(),
+        };
+        let mid = g.slices / 2;
+        let line = |l: &ContactLine, kin: &dyn Fn(usize) -> Kinematics| LineFriction {
+            mid: if g.slices % 2 == 1 {
+                kin(mid)
+            } else {
+                let (a, b) = (kin(mid - 1), kin(mid));
+                Kinematics {
+                    slide: 0.5 * (a.slide + b.slide),
+                    entrain: 0.5 * (a.entrain + b.entrain),
+                }
+            },
+            r_bar: if g.slices % 2 == 1 {
+                l.r_bar[mid]
+            } else {
+                0.5 * (l.r_bar[mid - 1] + l.r_bar[mid])
+            },
+        };
         let (flange, flange_s) = match &g.flange {
             Some(f) => {
                 let ring = (1.0 - cage_ratio) * f.rib_radius;
@@ -87,10 +124,13 @@ impl FrictionModel {
             None => (Kinematics::default(), 0.0),
         };
         FrictionModel {
-            cone,
-            cup,
+            cone_weights: weights(&cone_kin),
+            cup_weights: weights(&cup_kin),
+            cone: line(&g.cone, &cone_kin),
+            cup: line(&g.cup, &cup_kin),
             flange,
             flange_s,
+            slice_len: g.slice_len,
             eta0: p.eta0,
             alpha: p.alpha,
             sigma: p.roughness,
@@ -99,108 +139,82 @@ impl FrictionModel {
         }
     }
 
-    /// Raceway slice traction: returns (tangential force on the roller, torque contribution
-    /// per unit sign of speed) for one slice.
-    #[inline]
-    fn slice(&self, g: &Geometry, line_r_bar: f64, kin: Kinematics, q: f64, speed: f64, lubrication: Lubrication) -> (f64, f64) {
-        let v_s = speed * kin.slide;
-        match lubrication {
-            Lubrication::Dry => {
-                let mu = tr::dry_mu(self.mu, v_s);
-                // power = |mu q v_s|; torque per unit sign of speed = power / |speed|
-                (-mu * q, mu.abs() * q * kin.slide.abs())
-            }
-            Lubrication::Ehl => {
-                let l = g.slice_len;
-                let w = q / l;
-                let u_e = speed.abs() * kin.entrain;
-                let h = tr::film_line(self.eta0, self.alpha, g.e_prime, u_e, line_r_bar, w);
-                let lambda = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
-                let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 0.0 };
-                let (b, _) = line_contact_half_width(w, line_r_bar, g.e_prime);
-                let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
-                let mu_fl = tr::full_film_mu(self.eta0, v_s, h, p_mean).abs();
-                let mu = tr::traction_mu(lambda, slide_roll, mu_fl);
-                let f_roll = tr::rolling_resistance(self.eta0, self.alpha, g.e_prime, u_e, line_r_bar, q, l);
-                let dir = if v_s > 0.0 {
-                    1.0
-                } else if v_s < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                };
-                (-mu * q * dir, mu * q * kin.slide.abs() + f_roll * kin.entrain)
-            }
+    /// One raceway contact: (torque per unit sign of speed, skew moment on the roller).
+    fn raceway(&self, e_prime: f64, line: &LineFriction, s: &LineSums, speed: f64, lubrication: Lubrication) -> (f64, f64) {
+        if s.q <= 0.0 {
+            return (0.0, 0.0);
         }
+        let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        // Load-weighted mean sliding speed ratio along the line.
+        let slide = s.q_slide / s.q;
+        let mu = match lubrication {
+            Lubrication::Dry => tr::dry_mu(self.mu, speed * slide).abs(),
+            Lubrication::Ehl => {
+                let l = s.loaded as f64 * self.slice_len;
+                let w = s.q / l;
+                let u_e = speed.abs() * line.mid.entrain;
+                let h = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar, w);
+                let lambda = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
+                let slide_roll = if line.mid.entrain > 0.0 { slide / line.mid.entrain } else { 0.0 };
+                let (b, _) = line_contact_half_width(w, line.r_bar, e_prime);
+                let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
+                let mu_fl = tr::full_film_mu(self.eta0, speed * slide, h, p_mean).abs();
+                let mu = tr::traction_mu(lambda, slide_roll, mu_fl);
+                let f_roll = tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar, s.q, l);
+                return (mu * s.q_slide + f_roll * line.mid.entrain, mu * sign * s.q_skew);
+            }
+        };
+        (mu * s.q_slide, mu * sign * s.q_skew)
     }
 
-    /// Friction torque parts at the solution `x` of `qs`; fills the skew moments of `out`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn evaluate(
+    /// Friction torque parts from the converged roller evaluations; fills the skew moments
+    /// of `out`. With `evaluated` = 1 (axisymmetric solve) roller 1 stands for all rollers.
+    pub(super) fn evaluate(
         &self,
-        qs: &QuasiStatic,
-        x: &[f64],
+        g: &Geometry,
+        evals: &[RollerEval],
+        evaluated: usize,
         inputs: &Inputs,
         lubrication: Lubrication,
         out: &mut Outputs,
-        cone: &mut [f64],
-        cup: &mut [f64],
     ) -> TorqueParts {
-        let g = &qs.geometry;
         let speed = inputs.speed;
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let mut parts = TorqueParts::default();
-        for j in 0..g.z {
-            qs.slice_loads(x, j, cone, cup);
-            let (mut nis, mut nos) = (0.0, 0.0);
-            for k in 0..g.slices {
-                if cone[k] > 0.0 {
-                    let (ft, t) = self.slice(g, g.cone.r_bar[k], self.cone[k], cone[k], speed, lubrication);
-                    parts.raceway += t;
-                    nis -= g.slice_s[k] * ft;
-                }
-                if cup[k] > 0.0 {
-                    let (ft, t) = self.slice(g, g.cup.r_bar[k], self.cup[k], cup[k], speed, lubrication);
-                    parts.raceway += t;
-                    nos -= g.slice_s[k] * ft;
-                }
-            }
-            let mut nfs = 0.0;
-            let qf = qs.flange_load(j);
+        for (j, e) in evals.iter().enumerate().take(evaluated) {
+            let (t_cone, n_cone) = self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication);
+            let (t_cup, n_cup) = self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication);
+            parts.raceway += t_cone + t_cup;
+            out.nis[j] = n_cone;
+            out.nos[j] = n_cup;
+            out.nfs[j] = 0.0;
+            let qf = e.qf;
             if let (Some(f), true) = (&g.flange, qf > 0.0) {
                 let kin = self.flange;
                 let v_s = speed * kin.slide;
-                let (ft, t) = match lubrication {
-                    Lubrication::Dry => {
-                        let mu = tr::dry_mu(self.mu, v_s);
-                        (-mu * qf, mu.abs() * qf * kin.slide.abs())
-                    }
+                let f_total = match lubrication {
+                    Lubrication::Dry => tr::dry_mu(self.mu, v_s).abs() * qf,
                     Lubrication::Ehl => {
                         let u_e = speed.abs() * kin.entrain;
                         let (a, b, p_h) = f.hertz.ellipse(qf);
                         let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
                         let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
-                        let f_total = qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)
-                            + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h);
-                        let dir = if v_s > 0.0 {
-                            1.0
-                        } else if v_s < 0.0 {
-                            -1.0
-                        } else {
-                            0.0
-                        };
-                        (-f_total * dir, f_total * kin.slide.abs())
+                        qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio) + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h)
                     }
                 };
-                parts.flange += t;
-                nfs = -self.flange_s * ft;
+                parts.flange += f_total * kin.slide.abs();
+                // Traction on the roller opposes its sliding: F_t = -f sgn(v_s); N = -s F_t.
+                out.nfs[j] = self.flange_s * f_total * sign * kin.slide.signum();
             }
-            out.nis[j] = nis;
-            out.nos[j] = nos;
-            out.nfs[j] = nfs;
         }
-        parts.raceway *= sign;
-        parts.flange *= sign;
+        let copies = evals.len() as f64 / evaluated as f64;
+        for j in evaluated..evals.len() {
+            out.nis[j] = out.nis[0];
+            out.nos[j] = out.nos[0];
+            out.nfs[j] = out.nfs[0];
+        }
+        parts.raceway *= sign * copies;
+        parts.flange *= sign * copies;
         parts
     }
 }

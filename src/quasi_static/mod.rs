@@ -20,12 +20,13 @@
 mod friction;
 
 use crate::bearing::Bearing;
+use crate::contact::{self, LineLaw};
 use crate::geometry::Geometry;
 use crate::model::{Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use nalgebra::{Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 use std::f64::consts::TAU;
 
-pub use friction::FrictionModel;
+pub use friction::{FrictionModel, SliceWeights};
 
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
@@ -52,6 +53,11 @@ struct RollerEval {
     nit: f64,
     not: f64,
     nft: f64,
+    /// Slice sums of the cone and cup lines, for the friction model.
+    cone: LineSums,
+    cup: LineSums,
+    /// Smallest separation from any contact (m; <= 0 when touching something).
+    gap: f64,
     extrapolated: bool,
 }
 
@@ -64,7 +70,41 @@ struct LineSums {
     k: f64,
     k_lever: f64,
     k_lever2: f64,
+    /// Sum of q |v_s| per unit cone speed (sliding power weight) and of q s sgn(v_s)
+    /// (skew moment weight) over the slices, and the number of loaded slices.
+    q_slide: f64,
+    q_skew: f64,
+    loaded: u32,
+    /// Largest interference over the slices (negative: the line is separated by that gap).
+    max_delta: f64,
     extrapolated: bool,
+}
+
+/// Per-slice constants of one contact line, as flat arrays for the slice loop.
+#[derive(Debug, Clone)]
+struct SliceTable {
+    lever: Vec<f64>,
+    /// lever / L_s
+    lever_s: Vec<f64>,
+    /// cross(P, n) about the bearing origin (cone only; zeros for the cup).
+    chi: Vec<f64>,
+    crown: Vec<f64>,
+    slide: Vec<f64>,
+    skew: Vec<f64>,
+}
+
+impl SliceTable {
+    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, w: &SliceWeights) -> SliceTable {
+        let n = line.lever.len();
+        SliceTable {
+            lever: line.lever.clone(),
+            lever_s: line.lever.iter().map(|l| l / ls).collect(),
+            chi: chi.map(|c| c.to_vec()).unwrap_or_else(|| vec![0.0; n]),
+            crown: crown.to_vec(),
+            slide: w.slide.clone(),
+            skew: w.skew.clone(),
+        }
+    }
 }
 
 /// Per-solve constants of one roller.
@@ -92,12 +132,14 @@ pub struct QuasiStatic {
     cage_ratio: f64,
     /// Roller spin relative to the cage per unit cone speed (about the roller axis).
     spin_ratio: f64,
+    cone_table: SliceTable,
+    cup_table: SliceTable,
+    /// This solve is axisymmetric: one roller is evaluated and replicated.
+    axisymmetric: bool,
     setup: Vec<RollerSetup>,
     evals: Vec<RollerEval>,
     trial: Vec<f64>,
     step: Vec<f64>,
-    cone_buf: Vec<f64>,
-    cup_buf: Vec<f64>,
     friction: FrictionModel,
     /// Largest Newton step of one roller or cone component (m).
     max_step: f64,
@@ -110,7 +152,7 @@ impl QuasiStatic {
         let geometry = Geometry::new(bearing, params);
         let z = geometry.z;
         let ls = 0.5 * geometry.length;
-        let cone_chi = geometry
+        let cone_chi: Vec<f64> = geometry
             .cone
             .point
             .iter()
@@ -132,8 +174,12 @@ impl QuasiStatic {
             line.law.load(mid, 1e-6).1 * geometry.slices as f64
         };
         let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
-        let slices = geometry.slices;
+        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), &friction.cone_weights);
+        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, &friction.cup_weights);
         Ok(QuasiStatic {
+            axisymmetric: false,
+            cone_table,
+            cup_table,
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
             regularisation: 1e-9 * k_ref,
             geometry,
@@ -147,8 +193,6 @@ impl QuasiStatic {
             evals: vec![RollerEval::default(); z],
             trial: vec![0.0; 3 + 3 * z],
             step: vec![0.0; 3 + 3 * z],
-            cone_buf: vec![0.0; slices],
-            cup_buf: vec![0.0; slices],
             friction,
         })
     }
@@ -167,6 +211,14 @@ impl QuasiStatic {
         let g = &self.geometry;
         let p = &self.params;
         let z = g.z;
+        // Aligned shaft, no radial load, equal rollers and a round cup: every roller sees the
+        // same equilibrium, exactly, whatever the cage angle.
+        self.axisymmetric = inputs.fy == 0.0
+            && inputs.fz == 0.0
+            && inputs.xi == 0.0
+            && inputs.zeta == 0.0
+            && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
+            && p.roller_dd.iter().all(|d| *d == p.roller_dd[0]);
         let cos_h = g.half_angle.cos();
         let cos_o = g.cup_angle.cos();
         for j in 0..z {
@@ -212,36 +264,52 @@ impl QuasiStatic {
         (fc, m_fc, m_req)
     }
 
+    /// Sums over the slices of one contact line. The interference of slice k is affine in
+    /// the unknowns: delta_k = base - theta lever_k + gamma chi_k - crown_k. One specialised
+    /// loop per contact law (no per-slice dispatch).
     #[inline]
-    fn line_sums(
-        line: &crate::geometry::ContactLine,
-        crown: &[f64],
-        base: f64,
-        theta: f64,
-        ls: f64,
-        chi: Option<&[f64]>,
-        gamma: f64,
-    ) -> LineSums {
-        let mut s = LineSums::default();
-        for k in 0..line.point.len() {
-            let lever = line.lever[k];
-            let mut delta = base - theta * lever - crown[k];
-            if let Some(chi) = chi {
-                delta += gamma * chi[k];
+    fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64) -> LineSums {
+        match &line.law {
+            LineLaw::Johnson { c, eight_r } => {
+                let eight_r = &eight_r[..t.lever.len()];
+                Self::line_sums_with(t, base, theta, gamma, |k, d| contact::johnson(*c, eight_r[k], d))
             }
+            LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, |_, d| contact::palmgren(*k, d)),
+        }
+    }
+
+    #[inline(always)]
+    fn line_sums_with<L: Fn(usize, f64) -> (f64, f64, bool)>(t: &SliceTable, base: f64, theta: f64, gamma: f64, law: L) -> LineSums {
+        let mut s = LineSums {
+            max_delta: f64::NEG_INFINITY,
+            ..LineSums::default()
+        };
+        let n = t.lever.len();
+        let (lever, lever_s, chi, crown, slide, skew) = (
+            &t.lever[..n],
+            &t.lever_s[..n],
+            &t.chi[..n],
+            &t.crown[..n],
+            &t.slide[..n],
+            &t.skew[..n],
+        );
+        for k in 0..n {
+            let delta = base - theta * lever[k] + gamma * chi[k] - crown[k];
+            s.max_delta = s.max_delta.max(delta);
             if delta <= 0.0 {
                 continue;
             }
-            let (q, dq, ext) = line.law.load(k, delta);
-            let lv = lever / ls;
+            let (q, dq, ext) = law(k, delta);
+            let lv = lever_s[k];
             s.q += q;
-            s.q_lever += q * lever;
-            if let Some(chi) = chi {
-                s.q_chi += q * chi[k];
-            }
+            s.q_lever += q * lever[k];
+            s.q_chi += q * chi[k];
             s.k += dq;
             s.k_lever += dq * lv;
             s.k_lever2 += dq * lv * lv;
+            s.q_slide += q * slide[k];
+            s.q_skew += q * skew[k];
+            s.loaded += 1;
             s.extrapolated |= ext;
         }
         s
@@ -253,16 +321,19 @@ impl QuasiStatic {
         let st = &self.setup[j];
         let ls = self.ls;
         let theta = q[2] / ls;
-        let mut e = RollerEval::default();
+        let mut e = RollerEval {
+            gap: f64::INFINITY,
+            ..RollerEval::default()
+        };
 
         // Cone: delta = (dx - a) n_x + (dr - rho) n_r + gamma chi - theta lever + gap - crown
         let ni = g.cone.normal;
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
-        let si = Self::line_sums(&g.cone, &g.crown, base_i, theta, ls, Some(&self.cone_chi), st.gamma);
+        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma);
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
-        let so = Self::line_sums(&g.cup, &g.crown, base_o, theta, ls, None, 0.0);
+        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0);
 
         let add_line = |e: &mut RollerEval, n: [f64; 2], s: &LineSums, on_cone: bool| {
             let nv = Vector3::new(n[0], n[1], 0.0);
@@ -290,12 +361,16 @@ impl QuasiStatic {
         add_line(&mut e, no, &so, false);
         e.qi = si.q;
         e.qo = so.q;
+        e.gap = e.gap.min(-si.max_delta).min(-so.max_delta);
+        e.cone = si;
+        e.cup = so;
         e.nit = si.q_lever;
         e.not = so.q_lever;
 
         if let Some(f) = &g.flange {
             let n = f.normal;
             let delta = (cone[0] - q[0]) * n[0] + (cone[1] - q[1]) * n[1] + st.gamma * self.flange_chi - theta * f.lever;
+            e.gap = -delta;
             let (qf, kf) = f.hertz.load(delta);
             if qf > 0.0 {
                 let lv = f.lever / ls;
@@ -332,7 +407,8 @@ impl QuasiStatic {
         let mut max_r: f64 = 0.0;
         let mut merit = 0.0;
         let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
-        for j in 0..z {
+        let evaluated = if self.axisymmetric { 1 } else { z };
+        for j in 0..evaluated {
             let st = self.setup[j];
             let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
             let q = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
@@ -348,6 +424,16 @@ impl QuasiStatic {
             }
             f_ref = f_ref.max(e.qi).max(e.qo);
             self.evals[j] = e;
+        }
+        if self.axisymmetric {
+            let e = self.evals[0];
+            for j in 1..z {
+                self.evals[j] = e;
+            }
+            ring[0] = inputs.fx + z as f64 * e.f_cone[0];
+            ring[1] = 0.0;
+            ring[2] = 0.0;
+            merit *= z as f64;
         }
         let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
         if fixed_axial {
@@ -366,6 +452,9 @@ impl QuasiStatic {
 
     /// Newton step for the current evaluations and ring residual.
     fn newton_step(&mut self, ring: &Vector3<f64>) -> bool {
+        if self.axisymmetric {
+            return self.newton_step_axisymmetric(ring);
+        }
         let z = self.geometry.z;
         let reg = Matrix3::identity() * self.regularisation;
         let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
@@ -419,16 +508,129 @@ impl QuasiStatic {
                 self.step[3 + 3 * j] = 0.0;
             }
         }
-        // Clamp: no component moves more than max_step in one iteration.
-        let largest = self.step.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
-        if !largest.is_finite() {
-            return false;
-        }
-        if largest > self.max_step {
-            let f = self.max_step / largest;
-            self.step.iter_mut().for_each(|s| *s *= f);
+        // Clamp per block (cone, each roller): no component moves more than max_step in one
+        // iteration, and a roller touching nothing no more than its smallest gap (plus a
+        // nanometre), so it closes the gap instead of plunging into a contact. Per block, so
+        // one free roller's long regularised step does not shrink everybody's Newton step.
+        for (b, block) in self.step.chunks_mut(3).enumerate() {
+            let largest = block.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
+            if !largest.is_finite() {
+                return false;
+            }
+            let mut limit = self.max_step;
+            if b > 0 {
+                let gap = self.evals[b - 1].gap;
+                if gap > 0.0 {
+                    limit = limit.min(gap + 1e-9);
+                }
+            }
+            if largest > limit {
+                let f = limit / largest;
+                block.iter_mut().for_each(|s| *s *= f);
+            }
         }
         true
+    }
+
+    /// Newton step when all rollers are equal: the cone moves only axially, every roller
+    /// takes roller 1's step. The axial Schur complement is Z times one roller's.
+    fn newton_step_axisymmetric(&mut self, ring: &Vector3<f64>) -> bool {
+        let z = self.geometry.z as f64;
+        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
+        let e = self.evals[0];
+        let mut a = e.a - Matrix3::identity() * self.regularisation;
+        if !self.geometry.axial {
+            a[(0, 0)] = -1.0;
+        }
+        let Some(a_inv) = a.try_inverse() else { return false };
+        let b = e.b.column(0).into_owned(); // d r / d(cone dx)
+        let dx = if fixed_axial {
+            0.0
+        } else {
+            let s = z * (e.d[(0, 0)] - (b.transpose() * a_inv * b)[(0, 0)]) - self.regularisation * z;
+            let rhs = -ring[0] + z * (b.transpose() * a_inv * e.r)[(0, 0)];
+            rhs / s
+        };
+        let mut dq = a_inv * (-e.r - b * dx);
+        if !self.geometry.axial {
+            dq[0] = 0.0;
+        }
+        let mut limit = self.max_step;
+        if e.gap > 0.0 {
+            limit = limit.min(e.gap + 1e-9);
+        }
+        let largest = dq.amax();
+        if !(largest.is_finite() && dx.is_finite()) {
+            return false;
+        }
+        if largest > limit {
+            dq *= limit / largest;
+        }
+        self.step[0] = dx.clamp(-self.max_step, self.max_step);
+        self.step[1] = 0.0;
+        self.step[2] = 0.0;
+        for j in 0..self.geometry.z {
+            for c in 0..3 {
+                self.step[3 + 3 * j + c] = dq[c];
+            }
+        }
+        true
+    }
+
+    /// Rollers off the cone raceway rest on the cup and the flange under their centrifugal
+    /// force alone. Where such a roller has lost either seat, place it analytically: loads
+    /// from the force triangle Qo n_o + Qf n_f + Fc e_r = 0, interferences from the inverse
+    /// contact laws, position from the two linear interference equations (tilt kept).
+    /// Returns whether any roller moved. Its Jacobian is then regular and Newton converges
+    /// quadratically instead of crawling along a zero-stiffness direction.
+    fn seat_free_rollers(&self, x: &mut [f64], fc: f64) -> bool {
+        let g = &self.geometry;
+        let mid = g.slices / 2;
+        let no = g.cup.normal;
+        let mut moved = false;
+        for j in 0..g.z {
+            let e = &self.evals[j];
+            let seated = e.qo > 0.0 && (e.qf > 0.0 || g.flange.is_none());
+            if e.qi > 0.0 || seated || (fc <= 0.0 && e.gap >= 0.0) {
+                continue;
+            }
+            let st = &self.setup[j];
+            let theta = x[5 + 3 * j] / self.ls;
+            let s = g.slices as f64;
+            // delta_o(mid) = -(a n_ox + rho n_or) - theta lever + gap_cup - crown
+            let cup_rest = -theta * g.cup.lever[mid] + st.gap_cup - g.crown[mid];
+            match &g.flange {
+                Some(f) => {
+                    let nf = f.normal;
+                    let m = nalgebra::Matrix2::new(no[0], nf[0], no[1], nf[1]);
+                    let loads = m.try_inverse().map(|mi| mi * Vector2::new(0.0, -fc.max(0.0)));
+                    let (qo, qf) = match loads {
+                        Some(l) => (l[0].max(0.0), l[1].max(0.0)),
+                        None => continue,
+                    };
+                    let d_o = g.cup.law.deflection(mid, qo / s);
+                    let d_f = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
+                    // delta_f = (dx - a) n_fx + (dr - rho) n_fr + gamma chi_f - theta lever_f
+                    let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
+                    let flange_rest = x[0] * nf[0] + dr * nf[1] + st.gamma * self.flange_chi - theta * f.lever;
+                    // [-n_ox -n_or; -n_fx -n_fr] (a, rho) = (d_o - cup_rest, d_f - flange_rest)
+                    let a = nalgebra::Matrix2::new(-no[0], -no[1], -nf[0], -nf[1]);
+                    if let Some(ai) = a.try_inverse() {
+                        let v = ai * Vector2::new(d_o - cup_rest, d_f - flange_rest);
+                        x[3 + 3 * j] = v[0];
+                        x[4 + 3 * j] = v[1];
+                        moved = true;
+                    }
+                }
+                None => {
+                    // Cylindrical: radial seat on the cup only (axial held at zero).
+                    let d_o = g.cup.law.deflection(mid, fc.max(0.0) / s);
+                    x[4 + 3 * j] = (cup_rest - d_o) / no[1];
+                    moved = true;
+                }
+            }
+        }
+        moved
     }
 
     /// Rigid-ring start values: every roller carries the axial load share (or the
@@ -595,8 +797,21 @@ impl QuasiStatic {
                 x[3 + 3 * j] = 0.0;
             }
         }
+        if self.axisymmetric {
+            // Start from a symmetric point: cone centred, every roller as roller 1.
+            x[1] = 0.0;
+            x[2] = 0.0;
+            let (first, rest) = x[3..].split_at_mut(3);
+            for block in rest.chunks_mut(3) {
+                block.copy_from_slice(first);
+            }
+        }
         let (mut max_r, mut merit, mut f_ref, mut ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
+        if self.seat_free_rollers(x, fc) {
+            (max_r, merit, f_ref, ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
+        }
         let mut iterations = 0;
+        let mut history = [0.0_f64; 4];
         let mut extrapolated = self.evals.iter().any(|e| e.extrapolated);
         let limit = 0.05 * 2.0 * self.geometry.mean_radius;
         loop {
@@ -614,7 +829,11 @@ impl QuasiStatic {
             if !self.newton_step(&ring) {
                 break;
             }
-            // Damped update: halve the step while the residual grows.
+            // Damped update [Y22], non-monotone: contact problems often pass through a larger
+            // residual on the way (rollers entering and leaving the load zone), so a step is
+            // halved only while its merit exceeds 10x the worst of the last few iterates.
+            history[iterations as usize % history.len()] = merit;
+            let allowed = 10.0 * history.iter().fold(0.0_f64, |m, h| m.max(*h));
             let mut alpha = 1.0;
             let mut accepted = false;
             let mut trial = std::mem::take(&mut self.trial);
@@ -623,7 +842,7 @@ impl QuasiStatic {
                     trial[i] = x[i] + alpha * self.step[i];
                 }
                 let (mr, me, fr, rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
-                if me < merit || alpha < 1e-3 {
+                if me < merit || (me < allowed && alpha == 1.0) || alpha < 1e-3 {
                     x.copy_from_slice(&trial);
                     max_r = mr;
                     merit = me;
@@ -637,6 +856,9 @@ impl QuasiStatic {
             self.trial = trial;
             if !accepted {
                 break;
+            }
+            if self.seat_free_rollers(x, fc) {
+                (max_r, merit, f_ref, ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
             }
             extrapolated = self.evals.iter().any(|e| e.extrapolated);
             let stalled = self
@@ -717,12 +939,10 @@ impl QuasiStatic {
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
-        let lubrication = self.params.lubrication;
-        let mut cone = std::mem::take(&mut self.cone_buf);
-        let mut cup = std::mem::take(&mut self.cup_buf);
-        let torque = self.friction.evaluate(self, x, inputs, lubrication, out, &mut cone, &mut cup);
-        self.cone_buf = cone;
-        self.cup_buf = cup;
+        let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
+        let torque = self
+            .friction
+            .evaluate(&self.geometry, &self.evals, evaluated, inputs, self.params.lubrication, out);
         out.friction_torque_raceway = torque.raceway;
         out.friction_torque_flange = torque.flange;
         out.friction_torque_cage = 0.0;
@@ -748,11 +968,6 @@ impl QuasiStatic {
             let d_o = base_o - theta * g.cup.lever[k] - g.crown[k];
             cup[k] = g.cup.law.load(k, d_o).0;
         }
-    }
-
-    /// Flange load of roller `j` (already in the evaluation).
-    fn flange_load(&self, j: usize) -> f64 {
-        self.evals[j].qf
     }
 
     pub fn lubrication(&self) -> Lubrication {

@@ -439,3 +439,109 @@ fn equilibrium_is_independent_of_cage_angle_for_axisymmetric_load() {
     assert!((a.qo_max - c.qo_max).abs() < 1e-9 * a.qo_max);
     assert!((a.friction_torque - c.friction_torque).abs() < 1e-9 * a.friction_torque);
 }
+
+#[test]
+#[ignore]
+fn debug_iterations() {
+    let (b, p, mut i) = setup(&std::env::var("PRESET").unwrap_or("32018X".into()));
+    if let Ok(v) = std::env::var("XI_DEG") {
+        i.xi = v.parse::<f64>().unwrap().to_radians();
+    }
+    let mut qs = QuasiStatic::new(&b, &p).unwrap();
+    let mut x = vec![0.0; qs.n_unknowns()];
+    qs.prepare(&i, 0.0);
+    let (fc, mfc, mreq) = qs.inertial_loads(i.speed);
+    qs.initial_guess(&mut x, &i, fc, 1.0);
+    for it in 0..60 {
+        let (mr, me, fr, ring) = qs.evaluate(&x, &i, fc, mfc, mreq);
+        let (mut worst, mut wj, mut wc) = (0.0, 0, 0);
+        for j in 0..b.roller_count {
+            for c in 0..3 {
+                if qs.evals[j].r[c].abs() > worst {
+                    worst = qs.evals[j].r[c].abs();
+                    wj = j;
+                    wc = c;
+                }
+            }
+        }
+        println!(
+            "it {it}: max_r {mr:.3e} merit {me:.3e} ring {:.2e} worst roller {wj} comp {wc} = {worst:.3e} qi {:.3e} qo {:.3e} qf {:.3e}",
+            ring.amax(),
+            qs.evals[wj].qi,
+            qs.evals[wj].qo,
+            qs.evals[wj].qf
+        );
+        if mr <= 1e-9 * fr {
+            break;
+        }
+        qs.newton_step(&ring);
+        for k in 0..x.len() {
+            x[k] += qs.step[k];
+        }
+    }
+}
+
+#[test]
+#[ignore]
+fn debug_warm_step() {
+    let (b, p, i) = setup(&std::env::var("PRESET").unwrap_or("32018X".into()));
+    let mut qs = QuasiStatic::new(&b, &p).unwrap();
+    let mut out = Outputs::new(b.roller_count);
+    let mut x = Vec::new();
+    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+    let angle = qs.cage_speed(i.speed) * 1e-3;
+    qs.prepare(&i, angle);
+    let (fc, mfc, mreq) = qs.inertial_loads(i.speed);
+    for it in 0..10 {
+        let (mr, me, fr, ring) = qs.evaluate(&x, &i, fc, mfc, mreq);
+        let (mut worst, mut wj, mut wc) = (0.0, 0, 0);
+        for j in 0..b.roller_count {
+            for c in 0..3 {
+                if qs.evals[j].r[c].abs() > worst {
+                    worst = qs.evals[j].r[c].abs();
+                    wj = j;
+                    wc = c;
+                }
+            }
+        }
+        println!("it {it}: max_r {mr:.3e} (tol {:.1e}) merit {me:.3e} ring {:.2e} worst roller {wj} comp {wc} = {worst:.3e} qi {:.3e} qo {:.3e} qf {:.3e} gap {:.2e}", 1e-9*fr, ring.amax(), qs.evals[wj].qi, qs.evals[wj].qo, qs.evals[wj].qf, qs.evals[wj].gap);
+        if mr <= 1e-9 * fr {
+            break;
+        }
+        if qs.seat_free_rollers(&mut x, fc) {
+            println!("   seated");
+            continue;
+        }
+        qs.newton_step(&ring);
+        for k in 0..x.len() {
+            x[k] += qs.step[k];
+        }
+    }
+}
+
+#[test]
+fn deflection_sweep_to_the_model_limit_converges() {
+    // Shaft deflection up to 0.3 deg with and without radial load, cold and warm.
+    let (b, p, mut i) = setup("TRB130x230");
+    for fy in [0.0, 10_000.0] {
+        i.fy = fy;
+        let mut qs = QuasiStatic::new(&b, &p).unwrap();
+        let mut out = Outputs::new(b.roller_count);
+        let mut warm = Vec::new();
+        for xi_deg in [0.0, 0.001, 0.004, 0.006, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3] {
+            i.xi = f64::to_radians(xi_deg);
+            let r = qs
+                .solve(&i, 0.1, &mut warm, &mut out)
+                .unwrap_or_else(|e| panic!("warm, Fy {fy}, xi {xi_deg} deg: {e}"));
+            assert!(r.residual <= 1e-9);
+            let mut cold = Vec::new();
+            let mut out2 = Outputs::new(b.roller_count);
+            qs.solve(&i, 0.1, &mut cold, &mut out2)
+                .unwrap_or_else(|e| panic!("cold, Fy {fy}, xi {xi_deg} deg: {e}"));
+            assert!(
+                (out2.qo_max - out.qo_max).abs() < 1e-6 * out.qo_max,
+                "cold and warm starts disagree"
+            );
+        }
+    }
+}
