@@ -1,0 +1,584 @@
+//! `documentation/index.html` of the FMU: what the element models and what it does not,
+//! the fidelity levels, the packaged bearing's data and documented defaults, every variable
+//! of this bearing's FMU (from the variable table, with start values read back from the
+//! generated modelDescription.xml), the sources, and how to use the FMU from fmpy.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use trb::bearing::{Bearing, ContactLaw, Kind, LubricationModel};
+use trb::model::ModelError;
+use trb::model_description::MODEL_IDENTIFIER;
+use trb::simulation::{AccessError, Simulation};
+use trb::variables::{self, Causality, VarType, Variability, Variable};
+
+/// The four studies the model is written from (full citations as in MODEL.md).
+pub const SOURCES: &[(&str, &str)] = &[
+    (
+        "W25",
+        "Wu, Kang, Deng, \"An analysis on negative effects of shaft deflection on angular misalignment \
+         of rollers inside tapered roller bearing\", Lubricants 13(10):438, 2025. Dynamic TRB model \
+         with shaft deflection: the core model of the element.",
+    ),
+    (
+        "D19",
+        "\"Dry-lubricated TRB frictional torque with roller skewing\", Friction 7(6):551\u{2013}563, 2019. \
+         Quasi-static skew equilibrium with cage pocket limit; torque components.",
+    ),
+    (
+        "Y22",
+        "Yu et al., \"Contact load and preload characteristics of cylindrical roller bearings with \
+         triple-lobe raceway\", Mechanics & Industry 23:19, 2022. Quasi-static CRB, lobed raceway, \
+         damped Newton\u{2013}Raphson.",
+    ),
+    (
+        "L22",
+        "Liu, Fan, Wang, Liu, \"Friction torque of a TRB considering the geometric homogeneity of \
+         rollers\", Lubricants 10(7):154, 2022. Quasi-static TRB with roller diameter deviations.",
+    ),
+];
+
+pub fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn xml_unescape(s: &str) -> String {
+    s.replace("&quot;", "\"")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&apos;", "'")
+        .replace("&amp;", "&")
+}
+
+/// The value of attribute `name` in one XML tag text.
+fn attr(tag: &str, name: &str) -> Option<String> {
+    let needle = format!(" {name}=\"");
+    let start = tag.find(&needle)? + needle.len();
+    let end = tag[start..].find('"')? + start;
+    Some(xml_unescape(&tag[start..end]))
+}
+
+/// Start values by variable name, read from the generated model description (each
+/// `<ScalarVariable>` is followed by its type element carrying `start`).
+pub fn start_values(xml: &str) -> HashMap<String, String> {
+    let mut out = HashMap::new();
+    let mut current: Option<String> = None;
+    for line in xml.lines() {
+        let line = line.trim();
+        if line.starts_with("<ScalarVariable ") {
+            current = attr(line, "name");
+        } else if let Some(name) = current.take() {
+            if let Some(start) = attr(line, "start") {
+                out.insert(name, start);
+            }
+        }
+    }
+    out
+}
+
+fn mm(v: f64) -> String {
+    format!("{} mm", trim(v * 1e3, 4))
+}
+fn deg(v: f64) -> String {
+    format!("{} deg", trim(v.to_degrees(), 4))
+}
+fn um(v: f64) -> String {
+    format!("{} \u{b5}m", trim(v * 1e6, 3))
+}
+/// A number with at most `digits` decimals and no trailing zeros.
+fn trim(v: f64, digits: usize) -> String {
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Whether the dynamic model (fidelity 1) can be initialised in this build.
+fn dynamic_status(bearing: &Bearing) -> String {
+    let mut sim = Simulation::new(bearing.clone());
+    if let Err(e) = sim.set_integer(variables::FIDELITY, 1) {
+        return format!("not available in this build ({})", access_message(&e));
+    }
+    match sim.initialize(0.0) {
+        Ok(_) => "available".into(),
+        Err(ModelError::InvalidParameter { name, message }) if name == "fidelity" => {
+            format!("<strong>not available in this build</strong>: {}", esc(&message))
+        }
+        Err(e) => format!(
+            "available (initialisation at the default operating point reported: {})",
+            esc(&e.to_string())
+        ),
+    }
+}
+
+fn access_message(e: &AccessError) -> String {
+    esc(&e.to_string())
+}
+
+const STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:70em;margin:2em auto;padding:0 1em;line-height:1.45;color:#222}\
+table{border-collapse:collapse;margin:0.5em 0 1.5em 0;font-size:0.92em}\
+th,td{border:1px solid #bbb;padding:0.2em 0.5em;text-align:left;vertical-align:top}\
+th{background:#eee}code,pre{font-family:ui-monospace,monospace;font-size:0.92em}\
+pre{background:#f6f6f6;padding:0.7em;overflow-x:auto}td.num{text-align:right;white-space:nowrap}\
+details{margin:0.3em 0 1em 0}summary{cursor:pointer}";
+
+/// The documentation page of the FMU of `bearing` (`bearing_json` is the packaged text,
+/// `xml`/`guid` the generated model description).
+pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) -> String {
+    let z = bearing.roller_count;
+    let starts = start_values(xml);
+    let mut h = String::new();
+    let _ = writeln!(h, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">");
+    let _ = writeln!(h, "<title>{MODEL_IDENTIFIER} FMU \u{2014} bearing {}</title>", esc(&bearing.name));
+    let _ = writeln!(h, "<style>{STYLE}</style>\n</head>\n<body>");
+    let _ = writeln!(h, "<h1>{MODEL_IDENTIFIER}: tapered roller bearing element</h1>");
+    let _ = writeln!(
+        h,
+        "<p>FMI 2.0 Co-Simulation FMU, version {}, packaged for bearing <strong>{}</strong> ({} rollers). \
+         GUID <code>{}</code>.</p>",
+        env!("CARGO_PKG_VERSION"),
+        esc(&bearing.name),
+        z,
+        esc(guid)
+    );
+    let _ = writeln!(h, "<p>{}</p>", esc(&bearing.description));
+    let _ = writeln!(
+        h,
+        "<p>Contents: <a href=\"#models\">what it models</a> \u{b7} <a href=\"#limits\">what it does not</a> \u{b7} \
+         <a href=\"#fidelity\">fidelity levels</a> \u{b7} <a href=\"#bearing\">the bearing</a> \u{b7} \
+         <a href=\"#variables\">variables</a> \u{b7} <a href=\"#fmpy\">use from fmpy</a> \u{b7} \
+         <a href=\"#sources\">sources</a></p>"
+    );
+
+    // ----------------------------------------------------------------------------------
+    let _ = writeln!(h, "<h2 id=\"models\">What the element models</h2>");
+    let _ = writeln!(
+        h,
+        "<p>One rolling bearing between a rotating shaft (the cone, or inner ring) and a fixed housing \
+         (the cup, or outer ring), as a block for drivetrain and system simulation. The master \
+         supplies the cone speed, the external forces on the cone (axial <code>Fx</code>, radial \
+         <code>Fy</code>, <code>Fz</code>) or a prescribed axial displacement, and the shaft deflection \
+         angles <code>xi</code>, <code>zeta</code>. The element returns the cone displacement, the \
+         reaction forces and moments, the friction torque with its raceway, flange and cage parts, the \
+         power loss, the roller loads, attitudes (tilt, skew) and moments of every roller, and the cage \
+         speed. All values are SI (m, N, s, rad, Pa); angles display in deg and speeds in rpm.</p>"
+    );
+    let _ = writeln!(h, "<ul>");
+    for item in [
+        "Geometry: roller count, length, mean diameter and half-cone angle, spherical roller end, pitch \
+         diameter, cone, cup and flange contact angles, roller crowning, mounted clearance, a lobed outer \
+         raceway <code>rho(psi) = r0 + ee/2 - ee/2 cos(N psi)</code> [Y22] and per-roller diameter \
+         deviations <code>roller[j].dD</code> [L22]. A cylindrical roller bearing is the same element with \
+         zero contact angles and no flange load.",
+        "Contacts: each roller/raceway line contact is cut into <code>slices</code> slices; only slices \
+         with positive interference carry load. Line contact law per bearing: Johnson [W25] or Palmgren \
+         (whole-roller stiffness divided by the slice count) [D19, Y22, L22]. Flange / spherical roller \
+         end: Hertz point contact [W25]. Cage pocket (dynamic model): hydrodynamic / Hertz with damping [W25].",
+        "Quasi-static equilibrium (fidelity 0): cone translations and every roller's displacement and \
+         tilt from force and moment balance of sliced raceway loads, flange load, centrifugal force and \
+         gyroscopic moment, solved by a damped Newton\u{2013}Raphson method with an exact Jacobian, \
+         warm-started from the previous step [Y22]. Axial force preload or axial displacement preload.",
+        "Lubrication and friction: EHL film thickness (Hamrock line contact, Chittenden point contact), \
+         film ratio against the composite roughness, boundary / mixed / full-film traction, viscous flange \
+         traction [W25]; or dry Coulomb friction with one coefficient <code>mu</code> [D19]. Quasi-static \
+         friction torque with rolling resistance, sliding friction at a cage slip rate \
+         <code>cageSlipRate</code> and flange sliding [L22, rederived from Harris 1966].",
+        "Co-simulation semantics: sample and hold. <code>fmi2DoStep(t, h)</code> advances the cage and \
+         the roller azimuths over <code>[t, t+h]</code> with the inputs held and solves the element at \
+         <code>t+h</code>; outputs are algebraic in the inputs at fidelity 0, so reading an output after \
+         setting an input re-solves first. Variable communication step sizes, FMU state get/set and \
+         serialization are supported, and any number of instances may run, also on parallel threads.",
+    ] {
+        let _ = writeln!(h, "<li>{item}</li>");
+    }
+    let _ = writeln!(h, "</ul>");
+
+    let _ = writeln!(h, "<h2 id=\"limits\">What it does not model</h2>\n<ul>");
+    for item in [
+        "Temperature: the oil viscosity <code>oil.eta0</code> is a parameter; there is no thermal model, \
+         no churning or oil-bath drag and no starvation.",
+        "Elastic rings, shaft and housing: the rings are rigid bodies apart from the local contact \
+         deformation; the cup is fixed. The shaft deflection enters only as the imposed cone tilts \
+         <code>xi</code>, <code>zeta</code> (the moments needed to hold them are the outputs \
+         <code>reaction.My</code>, <code>reaction.Mz</code>), limited to \u{b1}0.5 deg.",
+        "Fatigue life, wear, damage and surface temperature (flash temperature) are not computed.",
+        "A cylindrical roller bearing carries no axial load in this model (<code>Fx</code> is ignored).",
+        "The element has no continuous states exposed to the master; at fidelity 0 the only memory \
+         between steps is the cage angle (roller azimuths) and the solver's warm start.",
+    ] {
+        let _ = writeln!(h, "<li>{item}</li>");
+    }
+    let _ = writeln!(h, "</ul>");
+
+    // ----------------------------------------------------------------------------------
+    let _ = writeln!(h, "<h2 id=\"fidelity\">Fidelity levels</h2>");
+    let _ = writeln!(
+        h,
+        "<p>Chosen with the parameter <code>fidelity</code> (fixed before initialization).</p>"
+    );
+    let _ = writeln!(
+        h,
+        "<table><tr><th>level</th><th>name</th><th>state</th><th>use</th><th>in this FMU</th></tr>"
+    );
+    let _ = writeln!(
+        h,
+        "<tr><td>0</td><td>quasi-static</td><td>ring displacements and per-roller equilibrium solved at \
+         every step (Newton)</td><td>drivetrain and system scenes, long runs</td>\
+         <td>available (default)</td></tr>"
+    );
+    let _ = writeln!(
+        h,
+        "<tr><td>1</td><td>dynamic</td><td>full roller (6 DOF each), cage and cone dynamics integrated in \
+         time [W25, after Gupta 1984], started from the level-0 solution</td><td>roller tilt and skew, \
+         moments, transients</td><td>{}</td></tr>",
+        dynamic_status(bearing)
+    );
+    let _ = writeln!(h, "</table>");
+    let _ = writeln!(
+        h,
+        "<p>Further switches, each a parameter: <code>lubrication</code> (EHL regimes or dry Coulomb), \
+         <code>skewModel</code> (level 0: roller skew equilibrium with the cage pocket limit [D19]), \
+         <code>gyroscopic</code>, <code>centrifugal</code>, <code>slices</code>, <code>tolerance</code>.</p>"
+    );
+
+    // ----------------------------------------------------------------------------------
+    write_bearing(&mut h, bearing, bearing_json);
+
+    // ----------------------------------------------------------------------------------
+    let _ = writeln!(h, "<h2 id=\"variables\">Variables</h2>");
+    let _ = writeln!(
+        h,
+        "<p>All {} variables of this FMU ({} rollers; per-roller variables <code>roller[j].*</code> for \
+         j = 1..{}). Values are in the unit shown; the display unit is what a tool may show instead. \
+         Start values are those of modelDescription.xml, i.e. the packaged bearing's defaults.</p>",
+        variables::expanded(z).len(),
+        z,
+        z
+    );
+    for (title, causality) in [
+        ("Parameters", Causality::Parameter),
+        ("Inputs", Causality::Input),
+        ("Outputs", Causality::Output),
+    ] {
+        let _ = writeln!(h, "<h3>{title}</h3>");
+        write_variable_table(&mut h, z, causality, &starts);
+    }
+
+    // ----------------------------------------------------------------------------------
+    write_fmpy(&mut h, bearing);
+
+    let _ = writeln!(h, "<h2 id=\"sources\">Sources</h2>\n<ul>");
+    for (key, text) in SOURCES {
+        let _ = writeln!(h, "<li id=\"{key}\">[{key}] {}</li>", esc(text));
+    }
+    let _ = writeln!(
+        h,
+        "<li>Further: T. A. Harris, Rolling Bearing Analysis (1966) for the quasi-static friction torque; \
+         the full-film traction regression of Wang, Yang &amp; Wang, Tribotest 11 (2004); P. K. Gupta (1984) \
+         for the dynamic roller equations.</li>"
+    );
+    let _ = writeln!(h, "</ul>");
+    let _ = writeln!(h, "<p>Bearing data source: {}</p>", esc(&bearing.source));
+    let _ = writeln!(h, "</body>\n</html>");
+    h
+}
+
+fn write_bearing(h: &mut String, b: &Bearing, json: &str) {
+    let _ = writeln!(h, "<h2 id=\"bearing\">The bearing: {}</h2>", esc(&b.name));
+    let _ = writeln!(h, "<p>{}<br>Source: {}</p>", esc(&b.description), esc(&b.source));
+    let kind = match b.kind {
+        Kind::Tapered => "tapered roller bearing",
+        Kind::Cylindrical => "cylindrical roller bearing",
+    };
+    let law = match b.contact_law {
+        ContactLaw::Johnson => "Johnson line contact [W25]",
+        ContactLaw::Palmgren => "Palmgren slices [D19, Y22, L22]",
+    };
+    let lub = match b.lubrication {
+        LubricationModel::Ehl => "EHL regimes (lubrication = 0)",
+        LubricationModel::Dry => "dry Coulomb (lubrication = 1)",
+    };
+    let mat = |m: &trb::bearing::Material| format!("E = {} GPa, nu = {}, density {} kg/m\u{b3}", trim(m.e / 1e9, 3), m.nu, m.density);
+    let mut rows: Vec<(&str, String)> = vec![
+        ("kind", kind.into()),
+        (
+            "bore \u{d7} outside diameter \u{d7} width",
+            format!("{} \u{d7} {} \u{d7} {}", mm(b.bore), mm(b.outside_diameter), mm(b.width)),
+        ),
+        ("number of rollers Z", b.roller_count.to_string()),
+        ("roller length (effective)", mm(b.roller_length)),
+        ("roller mean diameter", mm(b.roller_mean_diameter)),
+        ("roller half-cone angle", deg(b.roller_half_angle)),
+        (
+            "roller end sphere radius",
+            if b.roller_end_radius > 0.0 {
+                mm(b.roller_end_radius)
+            } else {
+                "none".into()
+            },
+        ),
+        ("pitch diameter", mm(b.pitch_diameter)),
+        ("cone (inner) contact angle", deg(b.cone_angle)),
+        ("cup (outer) contact angle", deg(b.cup_angle)),
+        (
+            "flange contact angle (to the radial plane)",
+            b.flange_angle.map(deg).unwrap_or_else(|| "no flange contact".into()),
+        ),
+        ("rollers", mat(&b.roller_material)),
+        ("rings", mat(&b.ring_material)),
+        ("cage", mat(&b.cage_material)),
+        ("line contact law", law.into()),
+        (
+            "cage",
+            format!(
+                "pocket clearance {}, guide clearance {}, land width {} at radius {}, mass {} kg",
+                mm(b.pocket_clearance),
+                mm(b.guide_clearance),
+                mm(b.land_width),
+                mm(b.land_radius),
+                b.cage_mass
+            ),
+        ),
+        ("oil", format!("eta0 = {} Pa s, alpha = {:e} 1/Pa", b.eta0, b.alpha)),
+        ("composite roughness", um(b.roughness)),
+        ("lubrication model", lub.into()),
+        ("Coulomb mu (dry), flange mu0", format!("{}, {}", b.mu, b.flange_mu0)),
+        (
+            "cage slip rate (quasi-static torque)",
+            format!("{} %", trim(b.cage_slip_rate * 100.0, 4)),
+        ),
+        ("roller crown drop", um(b.crown_drop)),
+        ("mounted radial clearance", um(b.clearance)),
+    ];
+    if b.outer_lobes > 0 {
+        rows.push((
+            "lobed outer raceway",
+            format!("{} lobes, waveform value ee = {}", b.outer_lobes, um(b.outer_waveform)),
+        ));
+    } else {
+        rows.push(("outer raceway", "round".into()));
+    }
+    rows.push(("slices per roller, tolerance", format!("{}, {:e}", b.slices, b.tolerance)));
+    rows.push((
+        "default operating point (input start values)",
+        format!(
+            "{} rpm, Fx = {} N, Fy = {} N, Fz = {} N, xi = {}, zeta = {}, {} preload (axialDisplacement = {})",
+            trim(b.speed * 30.0 / std::f64::consts::PI, 3),
+            trim(b.fx, 3),
+            trim(b.fy, 3),
+            trim(b.fz, 3),
+            deg(b.xi),
+            deg(b.zeta),
+            if b.displacement_preload { "displacement" } else { "force" },
+            um(b.axial_displacement)
+        ),
+    ));
+    let _ = writeln!(h, "<table><tr><th>quantity</th><th>value</th></tr>");
+    for (k, v) in rows {
+        let _ = writeln!(h, "<tr><td>{}</td><td>{}</td></tr>", esc(k), esc(&v));
+    }
+    let _ = writeln!(h, "</table>");
+    let _ = writeln!(h, "<h3>Documented defaults</h3>");
+    if b.documented_defaults.is_empty() {
+        let _ = writeln!(h, "<p>None: every value comes from the source.</p>");
+    } else {
+        let _ = writeln!(h, "<p>Values the source does not give, and how they were chosen:</p>\n<ul>");
+        for d in &b.documented_defaults {
+            let _ = writeln!(h, "<li>{}</li>", esc(d));
+        }
+        let _ = writeln!(h, "</ul>");
+    }
+    let _ = writeln!(
+        h,
+        "<details><summary>The packaged bearing file (<code>resources/bearing.json</code>)</summary>\n<pre>{}</pre></details>",
+        esc(json)
+    );
+    let _ = writeln!(
+        h,
+        "<p>The presets <code>resources/presets/*.json</code> are shipped for reference; this FMU is built \
+         for the bearing above (its variable list depends on the roller count).</p>"
+    );
+}
+
+fn type_name(v: &Variable) -> &'static str {
+    match v.ty {
+        VarType::Real => "Real",
+        VarType::Integer => "Integer",
+        VarType::Boolean => "Boolean",
+    }
+}
+
+fn variability_name(v: &Variable) -> &'static str {
+    match v.variability {
+        Variability::Fixed => "fixed",
+        Variability::Tunable => "tunable",
+        Variability::Discrete => "discrete",
+        Variability::Continuous => "continuous",
+    }
+}
+
+fn causality_name(c: Causality) -> &'static str {
+    match c {
+        Causality::Parameter => "parameter",
+        Causality::Input => "input",
+        Causality::Output => "output",
+    }
+}
+
+fn range(v: &Variable) -> String {
+    let f = |x: f64| {
+        if v.ty == VarType::Integer {
+            format!("{}", x as i64)
+        } else {
+            format!("{x:?}")
+        }
+    };
+    match (v.min, v.max) {
+        (Some(a), Some(b)) => format!("[{}, {}]", f(a), f(b)),
+        (Some(a), None) => format!("\u{2265} {}", f(a)),
+        (None, Some(b)) => format!("\u{2264} {}", f(b)),
+        (None, None) => String::new(),
+    }
+}
+
+fn write_variable_table(h: &mut String, z: usize, causality: Causality, starts: &HashMap<String, String>) {
+    let head = "<tr><th>name</th><th>value reference</th><th>type</th><th>causality</th><th>variability</th>\
+                <th>unit</th><th>display unit</th><th>range</th><th>start</th><th>description</th></tr>";
+    let all = variables::expanded(z);
+    let row = |vr: u32, name: &str, v: &Variable| -> String {
+        let j = if v.per_roller { (vr - v.vr) as usize + 1 } else { 0 };
+        format!(
+            "<tr><td><code>{}</code></td><td class=\"num\">{vr}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td></tr>",
+            esc(name),
+            type_name(v),
+            causality_name(v.causality),
+            variability_name(v),
+            esc(v.unit.unwrap_or("")),
+            esc(v.display_unit.unwrap_or("")),
+            esc(&range(v)),
+            esc(starts.get(name).map(String::as_str).unwrap_or(if v.causality == Causality::Output { "\u{2014}" } else { "" })),
+            esc(&v.description_for(j)),
+        )
+    };
+    // Scalars in one table.
+    let _ = writeln!(h, "<table>{head}");
+    for (vr, name, v) in all.iter().filter(|(_, _, v)| v.causality == causality && !v.per_roller) {
+        let _ = writeln!(h, "{}", row(*vr, name, v));
+    }
+    let _ = writeln!(h, "</table>");
+    // Per-roller rows, one collapsible table per table row.
+    let per_roller: Vec<&Variable> = variables::TABLE
+        .iter()
+        .filter(|v| v.causality == causality && v.per_roller)
+        .collect();
+    for v in per_roller {
+        let _ = writeln!(
+            h,
+            "<details><summary><code>{}</code> for j = 1..{z} (value references {}..{}): {}</summary>\n<table>{head}",
+            esc(v.name),
+            v.vr,
+            v.vr + z as u32 - 1,
+            esc(&v.description.replace("{j}", "j"))
+        );
+        for (vr, name, w) in all.iter().filter(|(_, _, w)| std::ptr::eq(*w, v)) {
+            let _ = writeln!(h, "{}", row(*vr, name, w));
+        }
+        let _ = writeln!(h, "</table></details>");
+    }
+}
+
+fn write_fmpy(h: &mut String, b: &Bearing) {
+    let rpm = b.speed * 30.0 / std::f64::consts::PI;
+    let _ = writeln!(h, "<h2 id=\"fmpy\">Use from fmpy</h2>");
+    let _ = writeln!(
+        h,
+        "<p>Inputs and parameters are set in SI units: <code>speed</code> in rad/s (rpm \u{d7} pi/30), \
+         angles in rad, forces in N, lengths in m. Outputs are SI as well.</p>"
+    );
+    let example = format!(
+        r#"import numpy as np
+from fmpy import simulate_fmu
+
+# inputs as a structured array: time, then FMU input names (SI units)
+t = [0.0, 0.1, 0.2]
+inputs = np.array(
+    [(ti, {speed:?}, {fx:?}, fy) for ti, fy in zip(t, [0.0, 0.0, 20000.0])],
+    dtype=[("time", float), ("speed", float), ("Fx", float), ("Fy", float)],
+)
+result = simulate_fmu(
+    "{id}.fmu",
+    fmi_type="CoSimulation",
+    start_time=0.0, stop_time=0.2, output_interval=1e-3,
+    start_values={{"slices": {slices}, "lubrication": {lub}}},  # parameters, FMU names
+    input=inputs,
+    output=["frictionTorque", "powerLoss", "cone.x", "Qo.max", "loadedRollers"],
+)
+print(result["time"][-1], result["frictionTorque"][-1])  # {rpm} rpm at t = 0"#,
+        speed = b.speed,
+        fx = b.fx,
+        id = MODEL_IDENTIFIER,
+        slices = b.slices,
+        lub = match b.lubrication {
+            LubricationModel::Ehl => 0,
+            LubricationModel::Dry => 1,
+        },
+        rpm = trim(rpm, 3),
+    );
+    let _ = writeln!(h, "<pre>{}</pre>", esc(&example));
+    let stepwise = format!(
+        r#"from fmpy import read_model_description, extract
+from fmpy.fmi2 import FMU2Slave
+
+md = read_model_description("{id}.fmu")
+vr = {{v.name: v.valueReference for v in md.modelVariables}}
+fmu = FMU2Slave(guid=md.guid, unzipDirectory=extract("{id}.fmu"),
+                modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bearing")
+fmu.instantiate()
+fmu.setupExperiment(startTime=0.0)
+fmu.enterInitializationMode()
+fmu.setReal([vr["speed"], vr["Fx"]], [{speed:?}, {fx:?}])
+fmu.exitInitializationMode()
+t, h = 0.0, 1e-3
+while t < 0.1:
+    fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+    t += h
+    torque, = fmu.getReal([vr["frictionTorque"]])
+fmu.terminate()
+fmu.freeInstance()"#,
+        id = MODEL_IDENTIFIER,
+        speed = b.speed,
+        fx = b.fx,
+    );
+    let _ = writeln!(
+        h,
+        "<p>Step by step, as a co-simulation master does:</p>\n<pre>{}</pre>",
+        esc(&stepwise)
+    );
+    let _ = writeln!(
+        h,
+        "<p>Without FMI, the same model code runs from the command line of the project: \
+         <code>trb simulate SCENARIO.json --out results.csv</code> (see <code>scenarios/README.md</code>); \
+         its CSV replayed through this FMU gives the same numbers.</p>"
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn start_values_are_read_from_the_model_description() {
+        let b = Bearing::default_preset();
+        let (xml, _) = trb::model_description::generate(&b);
+        let starts = start_values(&xml);
+        let speed: f64 = starts["speed"].parse().unwrap();
+        assert_eq!(speed.to_bits(), b.speed.to_bits());
+        assert_eq!(starts["slices"], b.slices.to_string());
+        assert!(!starts.contains_key("frictionTorque"));
+        assert!(starts.contains_key("roller[17].dD"));
+    }
+}

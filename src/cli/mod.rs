@@ -1,0 +1,81 @@
+//! The `trb` command line: argument definitions (clap derive) and dispatch.
+//!
+//! Every subcommand lives in its own module with an argument struct (`#[derive(clap::Args)]`)
+//! and a `run(args) -> Result<(), CliError>` function. To add a subcommand (for example
+//! `bench`): write `cli/bench.rs` with `BenchArgs` and `run`, add `pub mod bench;` below, a
+//! `Bench(bench::BenchArgs)` variant to [`Command`] and its arm in [`run`]. Nothing else
+//! needs to change.
+//!
+//! Exit codes: 0 success, 1 the model or the file system failed while running, 2 the request
+//! was invalid (command line, scenario file, bearing file), as clap does for usage errors.
+
+use clap::{Parser, Subcommand};
+use std::fmt;
+
+pub mod demo;
+pub mod documentation;
+pub mod package;
+pub mod paths;
+pub mod scenario;
+pub mod simulate;
+
+/// Tapered roller bearing element: package the FMI 2.0 Co-Simulation FMU, or run a scenario
+/// with the same model code without FMI.
+#[derive(Debug, Parser)]
+#[command(name = "trb", version, propagate_version = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Package the FMU (default: <cargo target dir>/fmu/TaperedRollerBearing.fmu).
+    Fmu(package::FmuArgs),
+    /// Run a scenario file (see scenarios/README.md) and write the results as CSV.
+    Simulate(simulate::SimulateArgs),
+    /// Package the default FMU, run scenarios/demo.json and print a short table.
+    Demo(demo::DemoArgs),
+}
+
+/// Run the parsed command line.
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Command::Fmu(args) => package::run(args),
+        Command::Simulate(args) => simulate::run(args),
+        Command::Demo(args) => demo::run(args),
+    }
+}
+
+/// A failed command: the message for stderr and the process exit code.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CliError {
+    pub code: i32,
+    pub message: String,
+}
+
+impl CliError {
+    /// The request was invalid (bad scenario, bad bearing file, bad option): exit code 2.
+    pub fn invalid(message: impl Into<String>) -> CliError {
+        CliError {
+            code: 2,
+            message: message.into(),
+        }
+    }
+
+    /// Running failed (model error, I/O error): exit code 1.
+    pub fn failed(message: impl Into<String>) -> CliError {
+        CliError {
+            code: 1,
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for CliError {}
