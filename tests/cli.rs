@@ -1,0 +1,456 @@
+//! Integration tests of the `trb` command line: `fmu` packaging and `simulate` scenarios,
+//! run as a separate process like a user does.
+
+use std::collections::BTreeSet;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use trb::bearing::{Bearing, PRESETS};
+use trb::model_description;
+
+const EXE: &str = env!("CARGO_BIN_EXE_trb");
+
+/// A scratch directory of its own for each test, removed when dropped.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(test: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!("trb-cli-{}-{test}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+    fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.path(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn trb(args: &[&str]) -> Output {
+    Command::new(EXE).args(args).output().expect("run trb")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn p(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+fn read_zip(path: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
+    let mut out = std::collections::BTreeMap::new();
+    for i in 0..archive.len() {
+        let mut f = archive.by_index(i).unwrap();
+        let mut bytes = Vec::new();
+        f.read_to_end(&mut bytes).unwrap();
+        out.insert(f.name().to_string(), bytes);
+    }
+    out
+}
+
+fn xml_guid(xml: &str) -> String {
+    xml.split(" guid=\"").nth(1).unwrap().split('"').next().unwrap().to_string()
+}
+
+#[test]
+fn fmu_holds_exactly_the_required_entries_and_the_guid_of_its_bearing() {
+    let s = Scratch::new("fmu");
+    let out = s.path("TaperedRollerBearing.fmu");
+    let o = trb(&["fmu", "--out", p(&out)]);
+    assert!(o.status.success(), "trb fmu failed: {}", stderr(&o));
+    assert!(!stderr(&o).contains("does not export"), "{}", stderr(&o));
+    let entries = read_zip(&out);
+
+    let mut want: BTreeSet<String> = [
+        "modelDescription.xml",
+        "binaries/linux64/TaperedRollerBearing.so",
+        "resources/bearing.json",
+        "documentation/index.html",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for (name, _) in PRESETS {
+        want.insert(format!("resources/presets/{name}.json"));
+    }
+    let got: BTreeSet<String> = entries.keys().cloned().collect();
+    assert_eq!(got, want);
+
+    let bearing = Bearing::default_preset();
+    let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    let guid = model_description::guid(&bearing);
+    assert_eq!(xml_guid(&xml), guid);
+    assert_eq!(xml, model_description::generate(&bearing).0);
+    assert!(xml.contains(r#"modelIdentifier="TaperedRollerBearing""#));
+    assert!(xml.contains(r#"name="roller[17].Nfs""#) && !xml.contains(r#"name="roller[18].Nfs""#));
+
+    // The packaged bearing is the preset text itself, and every preset is shipped verbatim.
+    assert_eq!(entries["resources/bearing.json"], PRESETS[0].1.as_bytes());
+    for (name, text) in PRESETS {
+        assert_eq!(entries[&format!("resources/presets/{name}.json")], text.as_bytes(), "{name}");
+    }
+    // The shared library is the crate's cdylib.
+    let so = &entries["binaries/linux64/TaperedRollerBearing.so"];
+    assert!(so.len() > 1000 && so.starts_with(b"\x7fELF"), "not an ELF shared library");
+
+    // The documentation lists every variable and the sources.
+    let html = String::from_utf8(entries["documentation/index.html"].clone()).unwrap();
+    for (_, name, _) in trb::variables::expanded(bearing.roller_count) {
+        assert!(html.contains(&format!("<code>{name}</code>")), "documentation misses {name}");
+    }
+    for key in ["[W25]", "[D19]", "[Y22]", "[L22]", "Lubricants 13(10):438", "fmpy", &guid] {
+        assert!(html.contains(key), "documentation misses {key}");
+    }
+    for d in &bearing.documented_defaults {
+        let escaped = d
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+            .replace('"', "&quot;");
+        assert!(html.contains(&escaped), "documentation misses the documented default {d}");
+    }
+
+    // One summary line: path, bearing, rollers, GUID, size.
+    let line = stdout(&o);
+    assert_eq!(line.trim_end().lines().count(), 1, "{line}");
+    for part in [p(&out), "TRB130x230", "17 rollers", guid.as_str()] {
+        assert!(line.contains(part), "summary `{line}` misses {part}");
+    }
+
+    // Packaging is deterministic (a small stand-in library keeps this fast in debug builds,
+    // where deflating the real one takes seconds).
+    let lib = fake_library(&s);
+    let (a, b) = (s.path("a.fmu"), s.path("b.fmu"));
+    assert!(trb(&["fmu", "--library", p(&lib), "--out", p(&a)]).status.success());
+    assert!(trb(&["fmu", "--library", p(&lib), "--out", p(&b)]).status.success());
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    assert_eq!(
+        read_zip(&a)["binaries/linux64/TaperedRollerBearing.so"],
+        std::fs::read(&lib).unwrap()
+    );
+}
+
+/// A stand-in for the shared library, for tests about everything else in the archive.
+fn fake_library(s: &Scratch) -> PathBuf {
+    s.write("libfake.so", "\x7fELF stand-in exporting fmi2Instantiate fmi2DoStep fmi2GetVersion")
+}
+
+#[test]
+fn fmu_of_preset_32008_has_23_rollers() {
+    let s = Scratch::new("fmu32008");
+    // --out may name an existing directory.
+    let lib = fake_library(&s);
+    let o = trb(&["fmu", "--bearing", "32008", "--library", p(&lib), "--out", p(&s.0)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let entries = read_zip(&s.path("TaperedRollerBearing.fmu"));
+    let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    assert!(xml.contains(r#"name="roller[23].tilt""#));
+    assert!(!xml.contains(r#"name="roller[24].tilt""#));
+    let bearing = Bearing::preset("32008").unwrap();
+    assert_eq!(xml_guid(&xml), model_description::guid(&bearing));
+    assert_eq!(
+        entries["resources/bearing.json"],
+        PRESETS.iter().find(|(n, _)| *n == "32008").unwrap().1.as_bytes()
+    );
+    assert!(stdout(&o).contains("23 rollers"));
+}
+
+#[test]
+fn fmu_of_a_bearing_file_packages_its_exact_text() {
+    let s = Scratch::new("fmufile");
+    let text = PRESETS[2].1.replace("\"name\": \"32008\"", "\"name\": \"MY-32008\"");
+    let file = s.write("my.json", &text);
+    let out = s.path("my.fmu");
+    let lib = fake_library(&s);
+    let o = trb(&["fmu", "--bearing", p(&file), "--library", p(&lib), "--out", p(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+    let entries = read_zip(&out);
+    assert_eq!(entries["resources/bearing.json"], text.as_bytes());
+    assert!(stdout(&o).contains("MY-32008"));
+}
+
+#[test]
+fn malformed_bearing_files_are_rejected_naming_the_field() {
+    let s = Scratch::new("badbearing");
+    let good = PRESETS[0].1;
+    let missing = good.replace("  \"pitch_diameter_mm\": 177.91,\n", "");
+    assert_ne!(missing, good);
+    let wrong_type = good.replace("\"count\": 17", "\"count\": \"seventeen\"");
+    assert_ne!(wrong_type, good);
+    let bad_value = good.replace("\"length_mm\": 42.06", "\"length_mm\": -3");
+    for (name, text, field) in [
+        ("missing.json", missing, "pitch_diameter_mm"),
+        ("wrong_type.json", wrong_type, "rollers.count"),
+        ("bad_value.json", bad_value, "rollers.length_mm"),
+        ("not_json.json", "{ this is not json".to_string(), "not_json.json"),
+    ] {
+        let file = s.write(name, &text);
+        let out = s.path(&format!("{name}.fmu"));
+        let o = trb(&["fmu", "--bearing", p(&file), "--out", p(&out)]);
+        assert!(!o.status.success(), "{name} was accepted");
+        let err = stderr(&o);
+        assert!(err.contains(field), "{name}: stderr `{err}` does not name {field}");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(!out.exists(), "{name}: an FMU was written");
+    }
+    let o = trb(&["fmu", "--bearing", "NO-SUCH-BEARING"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("NO-SUCH-BEARING"));
+}
+
+const SMALL: &str = r#"{
+  "description": "test: a short ramp",
+  "bearing": "TRB130x230",
+  "parameters": {"fidelity": 0, "slices": 12},
+  "inputs": {
+    "speed": 366.51914291880917,
+    "Fx": 30000.0,
+    "Fy": {"time": [0.0, 0.004, 0.01], "values": [0.0, 0.0, 10000.0]},
+    "xi": {"time": [0.005, 0.01], "values": [0.0, 5.0e-5]}
+  },
+  "stop_time": 0.01,
+  "step": 0.001,
+  "outputs": ["frictionTorque", "cone.x", "Qo.max", "loadedRollers", "roller[17].Qi"]
+}"#;
+
+fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(str::to_string).collect::<Vec<_>>();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse::<f64>().unwrap_or_else(|_| panic!("`{v}` is not a number in `{l}`")))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn simulate_writes_header_and_n_plus_one_rows_reproducibly() {
+    let s = Scratch::new("simulate");
+    let scenario = s.write("small.json", SMALL);
+    let csv = s.path("out.csv");
+    let o = trb(&["simulate", p(&scenario), "--out", p(&csv), "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).is_empty(), "--quiet printed {}", stdout(&o));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let (header, rows) = parse_csv(&text);
+    assert_eq!(
+        header.join(","),
+        "time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,frictionTorque,cone.x,Qo.max,loadedRollers,roller[17].Qi"
+    );
+    assert_eq!(rows.len(), 11);
+    for row in &rows {
+        assert_eq!(row.len(), header.len());
+        assert!(row.iter().all(|v| v.is_finite()), "{row:?}");
+    }
+    // Time grid ends exactly at stop_time; inputs follow the tables at the grid points.
+    assert_eq!(rows[0][0], 0.0);
+    assert_eq!(rows[10][0], 0.01);
+    assert!(rows[4][5].abs() < 1e-9);
+    assert_eq!(rows[10][5], 10000.0);
+    assert!((rows[7][5] - 5000.0).abs() < 1e-9);
+    assert_eq!(rows[10][2], 5.0e-5);
+    // Integers are written as integers.
+    let loaded = text.lines().nth(1).unwrap().split(',').nth(11).unwrap();
+    assert!(!loaded.contains('.'), "loadedRollers written as `{loaded}`");
+    // The load changes the outputs.
+    assert!(rows[10][10] > rows[0][10]);
+
+    let csv2 = s.path("out2.csv");
+    let o = trb(&["simulate", p(&scenario), "--out", p(&csv2)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("11 rows"), "{}", stdout(&o));
+    assert_eq!(
+        std::fs::read(&csv).unwrap(),
+        std::fs::read(&csv2).unwrap(),
+        "re-run is not byte-identical"
+    );
+}
+
+#[test]
+fn simulate_writes_all_outputs_by_default() {
+    let s = Scratch::new("alloutputs");
+    let scenario = s.write("all.json", r#"{"bearing": "32008", "stop_time": 0.002, "step": 0.001}"#);
+    let csv = s.path("all.csv");
+    let o = trb(&["simulate", p(&scenario), "--out", p(&csv), "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (header, rows) = parse_csv(&std::fs::read_to_string(&csv).unwrap());
+    let outputs: Vec<String> = trb::variables::expanded(23)
+        .into_iter()
+        .filter(|(_, _, v)| v.causality == trb::variables::Causality::Output)
+        .map(|(_, n, _)| n)
+        .collect();
+    assert_eq!(header.len(), 1 + 7 + outputs.len());
+    assert_eq!(&header[8..], &outputs[..]);
+    assert_eq!(rows.len(), 3);
+}
+
+#[test]
+fn bad_scenarios_exit_2_naming_the_field() {
+    let s = Scratch::new("badscenario");
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "unknown_input.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "inputs": {"Fq": 1.0}}"#,
+            &["inputs.Fq", "Fq"],
+        ),
+        (
+            "unknown_parameter.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"slicez": 10}}"#,
+            &["parameters.slicez"],
+        ),
+        (
+            "unknown_output.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "outputs": ["frictionTorque", "torqueFriction"]}"#,
+            &["outputs[1]", "torqueFriction"],
+        ),
+        (
+            "non_increasing.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "inputs": {"Fy": {"time": [0.0, 0.005, 0.005], "values": [0, 1, 2]}}}"#,
+            &["inputs.Fy.time", "strictly increasing"],
+        ),
+        ("zero_step.json", r#"{"stop_time": 0.01, "step": 0.0}"#, &["step"]),
+        ("negative_step.json", r#"{"stop_time": 0.01, "step": -0.001}"#, &["step"]),
+        (
+            "wrong_type.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"slices": "many"}}"#,
+            &["parameters.slices"],
+        ),
+        (
+            "bool_type.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"skewModel": 1}}"#,
+            &["parameters.skewModel"],
+        ),
+        (
+            "out_of_range.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"slices": 0}}"#,
+            &["slices"],
+        ),
+        (
+            "real_range.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"mu": 5.0}}"#,
+            &["mu"],
+        ),
+        (
+            "roller_index.json",
+            r#"{"stop_time": 0.01, "step": 0.001, "parameters": {"roller[18].dD": 0.0}}"#,
+            &["roller[18].dD"],
+        ),
+        ("missing_stop.json", r#"{"step": 0.001}"#, &["stop_time"]),
+        ("unknown_key.json", r#"{"stop_time": 0.01, "step": 0.001, "stop": 1}"#, &["stop"]),
+        (
+            "bad_bearing.json",
+            r#"{"bearing": "nope.json", "stop_time": 0.01, "step": 0.001}"#,
+            &["bearing", "nope.json"],
+        ),
+        ("not_json.json", r#"{"stop_time": 0.01,"#, &["not_json.json"]),
+    ];
+    for (name, text, needles) in cases {
+        let file = s.write(name, text);
+        let csv = s.path(&format!("{name}.csv"));
+        let o = trb(&["simulate", p(&file), "--out", p(&csv)]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: exit code {:?}, stderr {err}", o.status.code());
+        for needle in *needles {
+            assert!(err.contains(needle), "{name}: stderr `{err}` does not contain {needle}");
+        }
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(!csv.exists(), "{name}: a CSV was written for an invalid scenario");
+    }
+    // A scenario file that does not exist.
+    let o = trb(&["simulate", p(&s.path("absent.json")), "--out", p(&s.path("x.csv"))]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn a_model_error_while_stepping_exits_1_naming_the_time_and_keeps_the_rows() {
+    let s = Scratch::new("modelerror");
+    // xi jumps beyond the model's range (+-0.5 deg) at t = 0.005.
+    let scenario = s.write(
+        "fail.json",
+        r#"{"stop_time": 0.01, "step": 0.001, "outputs": ["cone.x"],
+            "inputs": {"xi": {"time": [0.0, 0.0045, 0.005], "values": [0.0, 0.0, 0.02]}}}"#,
+    );
+    let csv = s.path("fail.csv");
+    let o = trb(&["simulate", p(&scenario), "--out", p(&csv), "--quiet"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("t = 0.005") && err.contains("xi"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let (_, rows) = parse_csv(&std::fs::read_to_string(&csv).unwrap());
+    assert_eq!(rows.len(), 5, "rows before the failure are kept");
+}
+
+#[test]
+fn scenario_bearing_paths_are_relative_to_the_scenario_file() {
+    let s = Scratch::new("relbearing");
+    std::fs::create_dir_all(s.path("sub/bearings")).unwrap();
+    s.write("sub/bearings/b.json", PRESETS[2].1);
+    let scenario = s.write(
+        "sub/rel.json",
+        r#"{"bearing": "bearings/b.json", "stop_time": 0.001, "step": 0.001, "outputs": ["roller[23].Qi"]}"#,
+    );
+    let csv = s.path("rel.csv");
+    let o = trb(&["simulate", p(&scenario), "--out", p(&csv), "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(&csv)
+        .unwrap()
+        .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,roller[23].Qi\n"));
+}
+
+#[test]
+fn every_shipped_scenario_runs() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let s = Scratch::new("shipped");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 19, "expected the study scenarios in {}", dir.display());
+    // Run them in parallel: each is an independent process.
+    let children: Vec<(PathBuf, PathBuf, std::process::Child)> = files
+        .into_iter()
+        .map(|f| {
+            let csv = s.path(&format!("{}.csv", f.file_stem().unwrap().to_string_lossy()));
+            let child = Command::new(EXE)
+                .args(["simulate", p(&f), "--out", p(&csv), "--quiet"])
+                .stdout(std::process::Stdio::piped())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap();
+            (f, csv, child)
+        })
+        .collect();
+    for (f, csv, child) in children {
+        let o = child.wait_with_output().unwrap();
+        assert!(o.status.success(), "{} failed: {}", f.display(), stderr(&o));
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let (header, rows) = parse_csv(&text);
+        assert!(rows.len() >= 2, "{}", f.display());
+        assert!(header.iter().any(|h| h == "frictionTorque"), "{}", f.display());
+        for row in &rows {
+            assert!(row.iter().all(|v| v.is_finite()), "{}: non-finite value", f.display());
+        }
+    }
+}
