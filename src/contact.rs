@@ -26,8 +26,8 @@ const JOHNSON_LOG_FLOOR: f64 = 3.0;
 /// Load-deflection law of one slice, constants precomputed per slice.
 #[derive(Debug, Clone)]
 pub enum LineLaw {
-    /// q = c delta / (ln(8 R / delta) - 1), c = pi (l/s) E'; per-slice `eight_r` = 8 R_bar.
-    Johnson { c: f64, eight_r: Vec<f64> },
+    /// q = c delta / (ln(8 R / delta) - 1), c = pi (l/s) E'; per slice `ln_8r` = ln(8 R_bar).
+    Johnson { c: f64, ln_8r: Vec<f64> },
     /// q = k delta^(10/9), k = K / s: the whole-roller stiffness split over the slices,
     /// so the total load at uniform interference does not depend on s.
     Palmgren { k: f64 },
@@ -37,7 +37,7 @@ impl LineLaw {
     pub fn johnson(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
         LineLaw::Johnson {
             c: PI * slice_len * e_prime,
-            eight_r: r_bar.iter().map(|r| 8.0 * r).collect(),
+            ln_8r: r_bar.iter().map(|r| (8.0 * r).ln()).collect(),
         }
     }
 
@@ -55,7 +55,7 @@ impl LineLaw {
             return (0.0, 0.0, false);
         }
         match self {
-            LineLaw::Johnson { c, eight_r } => johnson(*c, eight_r[k], delta),
+            LineLaw::Johnson { c, ln_8r } => johnson(*c, ln_8r[k], delta),
             LineLaw::Palmgren { k: kp } => palmgren(*kp, delta),
         }
     }
@@ -102,25 +102,25 @@ impl LineLaw {
 }
 
 /// Palmgren slice law q = k delta^(10/9) and its derivative (delta > 0).
-#[inline]
+#[inline(always)]
 pub fn palmgren(k: f64, delta: f64) -> (f64, f64, bool) {
-    let d19 = delta.powf(1.0 / 9.0);
+    let d19 = crate::fastmath::ninth_root(delta);
     (k * delta * d19, k * (10.0 / 9.0) * d19, false)
 }
 
 /// Johnson slice law q = c delta / (ln(8R/delta) - 1) and its derivative (delta > 0),
 /// continued linearly beyond its validity range (flagged).
-#[inline]
-pub fn johnson(c: f64, eight_r: f64, delta: f64) -> (f64, f64, bool) {
-    let lg = (eight_r / delta).ln();
+#[inline(always)]
+pub fn johnson(c: f64, ln_8r: f64, delta: f64) -> (f64, f64, bool) {
+    let lg = ln_8r - crate::fastmath::ln(delta);
     let den = lg - 1.0;
     if den >= JOHNSON_LOG_FLOOR {
-        let q = c * delta / den;
+        let inv = 1.0 / den;
         // d/d delta [delta / (ln(8R/delta) - 1)] = (den + 1) / den^2 = lg / den^2
-        (q, c * lg / (den * den), false)
+        (c * delta * inv, c * lg * inv * inv, false)
     } else {
         // Linear continuation from the edge of validity (C1).
-        let d0 = eight_r * (-(JOHNSON_LOG_FLOOR + 1.0)).exp();
+        let d0 = (ln_8r - (JOHNSON_LOG_FLOOR + 1.0)).exp();
         let den0 = JOHNSON_LOG_FLOOR;
         let q0 = c * d0 / den0;
         let k0 = c * (den0 + 1.0) / (den0 * den0);

@@ -13,6 +13,7 @@
 
 pub mod bearing;
 pub mod contact;
+pub mod fastmath;
 pub mod fmi;
 pub mod geometry;
 pub mod model;

@@ -15,6 +15,7 @@
 //!   viscous film traction integrated over the contact ellipse [W25].
 //! - Dry Coulomb [D19]: mu regularised smoothly at zero sliding speed.
 
+use crate::fastmath as fm;
 use std::f64::consts::PI;
 
 /// Hamrock central film thickness of a line contact.
@@ -26,7 +27,7 @@ pub fn film_line(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_bar: f64, w: f
     let u = eta0 * u_e / (e_prime * r_bar);
     let g = alpha * e_prime;
     let wd = w / (e_prime * r_bar);
-    r_bar * 2.922 * u.powf(0.692) * g.powf(0.470) * wd.powf(-0.166)
+    r_bar * 2.922 * fm::powf(u, 0.692) * fm::powf(g, 0.470) * fm::powf(wd, -0.166)
 }
 
 /// Chittenden et al. central film of an elliptical contact with entrainment along the
@@ -38,8 +39,8 @@ pub fn film_point(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_e: f64, r_s: 
     let u = eta0 * u_e / (e_prime * r_e);
     let g = alpha * e_prime;
     let w = q / (e_prime * r_e * r_e);
-    let side = 1.0 - (-1.23 * (r_s / r_e).powf(2.0 / 3.0)).exp();
-    r_e * 4.31 * u.powf(0.68) * g.powf(0.49) * w.powf(-0.073) * side
+    let side = 1.0 - (-1.23 * fm::powf(r_s / r_e, 2.0 / 3.0)).exp();
+    r_e * 4.31 * fm::powf(u, 0.68) * fm::powf(g, 0.49) * fm::powf(w, -0.073) * side
 }
 
 /// Roelands viscosity at pressure `p` (z0 = 0.4), as written in MODEL.md section 4.
@@ -100,7 +101,7 @@ pub fn rolling_resistance(eta0: f64, alpha: f64, e_prime: f64, u: f64, r_bar: f6
     }
     let gu = alpha * eta0 * u / r_bar;
     let w = q / (e_prime * r_bar * l);
-    4.318 / alpha * gu.powf(0.658) * w.powf(0.3635) * r_bar * l
+    4.318 / alpha * fm::powf(gu, 0.658) * fm::powf(w, 0.3635) * r_bar * l
 }
 
 /// Asperity (boundary) friction share of the rib contact [L22]: mu0 exp(-1.8 Lambda^1.2).

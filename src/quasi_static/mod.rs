@@ -270,9 +270,9 @@ impl QuasiStatic {
     #[inline]
     fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64) -> LineSums {
         match &line.law {
-            LineLaw::Johnson { c, eight_r } => {
-                let eight_r = &eight_r[..t.lever.len()];
-                Self::line_sums_with(t, base, theta, gamma, |k, d| contact::johnson(*c, eight_r[k], d))
+            LineLaw::Johnson { c, ln_8r } => {
+                let ln_8r = &ln_8r[..t.lever.len()];
+                Self::line_sums_with(t, base, theta, gamma, |k, d| contact::johnson(*c, ln_8r[k], d))
             }
             LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, |_, d| contact::palmgren(*k, d)),
         }
@@ -717,11 +717,14 @@ impl QuasiStatic {
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
 
-        let cold = warm.len() != n;
-        if cold {
-            warm.resize(n, 0.0);
-        }
+        // The warm start holds the unknowns and, last, the cage angle they were solved at.
+        let cold = warm.len() != n + 1;
+        let previous_angle = if cold { cage_angle } else { warm[n] };
+        warm.resize(n, 0.0);
         let mut x = std::mem::take(warm);
+        if !cold {
+            self.predict(&mut x, cage_angle - previous_angle);
+        }
         let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
             (false, _) => Some(0.0),
             (true, Preload::Displacement) => Some(inputs.axial_displacement),
@@ -775,8 +778,44 @@ impl QuasiStatic {
             }
         };
         self.write_outputs(&x, inputs, report, out);
+        x.push(cage_angle);
         *warm = x;
         Ok(report)
+    }
+
+    /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
+    /// in place while the rollers move through it, so each roller starts from the previous
+    /// solution interpolated (cubic, periodic in azimuth) at its new position. Only for
+    /// identical rollers; a roller with its own diameter deviation keeps its own state.
+    fn predict(&mut self, x: &mut [f64], shift: f64) {
+        let z = self.geometry.z;
+        let dd = &self.params.roller_dd;
+        if shift == 0.0 || !shift.is_finite() || self.axisymmetric || dd.iter().any(|d| *d != dd[0]) {
+            return;
+        }
+        let u = shift * z as f64 / TAU;
+        let whole = u.floor();
+        let f = u - whole;
+        // Catmull-Rom weights at fraction f between samples k and k+1.
+        let w = [
+            0.5 * (-f + 2.0 * f * f - f * f * f),
+            0.5 * (2.0 - 5.0 * f * f + 3.0 * f * f * f),
+            0.5 * (f + 4.0 * f * f - 3.0 * f * f * f),
+            0.5 * (-f * f + f * f * f),
+        ];
+        let prev = &mut self.trial;
+        prev[..x.len()].copy_from_slice(x);
+        let base = whole.rem_euclid(z as f64) as usize;
+        for j in 0..z {
+            for c in 0..3 {
+                let mut v = 0.0;
+                for (m, wm) in w.iter().enumerate() {
+                    let k = (j + base + z + m - 1) % z;
+                    v += wm * prev[3 + 3 * k + c];
+                }
+                x[3 + 3 * j + c] = v;
+            }
+        }
     }
 
     fn newton(
