@@ -545,3 +545,28 @@ fn deflection_sweep_to_the_model_limit_converges() {
         }
     }
 }
+
+#[test]
+fn displacement_preload_sweeps_converge_from_cold_starts() {
+    // [W25]: axial displacement preload 10 um with Fr = 1.5 .. 45 kN at xi = 0 and 0.003 deg.
+    let (b, mut p, mut i) = setup("TRB130x230");
+    p.preload = Preload::Displacement;
+    i.axial_displacement = 10e-6;
+    i.fx = 0.0;
+    for xi_deg in [0.0, 0.003] {
+        i.xi = f64::to_radians(xi_deg);
+        let mut last_fx = 0.0;
+        for fr in [1_500.0, 5_000.0, 15_000.0, 30_000.0, 45_000.0] {
+            i.fy = fr;
+            let s = solve(&b, &p, &i);
+            assert!(s.report.residual <= 1e-9);
+            // more radial load on a fixed axial position: a larger axial reaction
+            assert!(
+                s.out.reaction_fx > last_fx,
+                "xi {xi_deg}, Fr {fr}: {} <= {last_fx}",
+                s.out.reaction_fx
+            );
+            last_fx = s.out.reaction_fx;
+        }
+    }
+}
