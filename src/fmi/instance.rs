@@ -392,70 +392,62 @@ impl Instance {
     }
 
     pub fn get_real(&mut self, vrs: Option<&[u32]>, values: Option<&mut [f64]>) -> Fmi2Status {
-        const F: &str = "fmi2GetReal";
-        if !self.allowed(mask::GET, F) {
-            return FMI2_ERROR;
-        }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
-        let Some(values) = values else {
-            return self.null_argument(F, "value[]");
-        };
-        let mut status = FMI2_OK;
-        let mut solve = self.may_solve();
-        for (&vr, value) in vrs.iter().zip(values.iter_mut()) {
-            if solve {
-                match self.sim.get_real(vr) {
-                    Ok(v) => {
-                        *value = v;
-                        continue;
-                    }
-                    Err(AccessError::Model(e)) => {
-                        self.log
-                            .error(format_args!("{F}: {e}; returning the outputs of the last successful solve"));
-                        status = FMI2_ERROR;
-                        solve = false;
-                    }
-                    Err(e) => return self.access_error(F, &e, "Real"),
-                }
-            }
-            match self.sim.last_real(vr) {
-                Ok(v) => *value = v,
-                Err(_) => return self.unknown(F, vr, "Real"),
-            }
-        }
-        status
+        self.get_numbers("fmi2GetReal", "Real", vrs, values, Simulation::get_real, Simulation::last_real)
     }
 
     pub fn get_integer(&mut self, vrs: Option<&[u32]>, values: Option<&mut [i32]>) -> Fmi2Status {
-        const F: &str = "fmi2GetInteger";
-        if !self.allowed(mask::GET, F) {
+        self.get_numbers(
+            "fmi2GetInteger",
+            "Integer",
+            vrs,
+            values,
+            Simulation::get_integer,
+            Simulation::last_integer,
+        )
+    }
+
+    /// fmi2GetReal / fmi2GetInteger: outputs re-solve first where inputs may have changed
+    /// (`get`); after a failed solve, and in states where no solve may happen, the values of
+    /// the last successful solve are returned (`last`), never NaN.
+    fn get_numbers<T: Copy>(
+        &mut self,
+        function: &'static str,
+        ty: &'static str,
+        vrs: Option<&[u32]>,
+        values: Option<&mut [T]>,
+        get: fn(&mut Simulation, u32) -> Result<T, AccessError>,
+        last: fn(&Simulation, u32) -> Result<T, AccessError>,
+    ) -> Fmi2Status {
+        if !self.allowed(mask::GET, function) {
             return FMI2_ERROR;
         }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
+        let Some(vrs) = vrs else {
+            return self.null_argument(function, "vr[]");
+        };
         let Some(values) = values else {
-            return self.null_argument(F, "value[]");
+            return self.null_argument(function, "value[]");
         };
         let mut status = FMI2_OK;
         let mut solve = self.may_solve();
         for (&vr, value) in vrs.iter().zip(values.iter_mut()) {
             if solve {
-                match self.sim.get_integer(vr) {
+                match get(&mut self.sim, vr) {
                     Ok(v) => {
                         *value = v;
                         continue;
                     }
                     Err(AccessError::Model(e)) => {
                         self.log
-                            .error(format_args!("{F}: {e}; returning the outputs of the last successful solve"));
+                            .error(format_args!("{function}: {e}; returning the outputs of the last successful solve"));
                         status = FMI2_ERROR;
                         solve = false;
                     }
-                    Err(e) => return self.access_error(F, &e, "Integer"),
+                    Err(e) => return self.access_error(function, &e, ty),
                 }
             }
-            match self.sim.last_integer(vr) {
+            match last(&self.sim, vr) {
                 Ok(v) => *value = v,
-                Err(_) => return self.unknown(F, vr, "Integer"),
+                Err(_) => return self.unknown(function, vr, ty),
             }
         }
         status
@@ -496,60 +488,43 @@ impl Instance {
     }
 
     pub fn set_real(&mut self, vrs: Option<&[u32]>, values: Option<&[f64]>) -> Fmi2Status {
-        const F: &str = "fmi2SetReal";
-        if !self.allowed(mask::SET, F) {
-            return FMI2_ERROR;
-        }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
-        let Some(values) = values else {
-            return self.null_argument(F, "value[]");
-        };
-        for (&vr, &value) in vrs.iter().zip(values) {
-            if !self.settable_after_initialization(F, vr) {
-                return FMI2_ERROR;
-            }
-            if let Err(e) = self.sim.set_real(vr, value) {
-                return self.access_error(F, &e, "Real");
-            }
-        }
-        FMI2_OK
+        self.set_values("fmi2SetReal", "Real", vrs, values, |sim, vr, v| sim.set_real(vr, v))
     }
 
     pub fn set_integer(&mut self, vrs: Option<&[u32]>, values: Option<&[i32]>) -> Fmi2Status {
-        const F: &str = "fmi2SetInteger";
-        if !self.allowed(mask::SET, F) {
-            return FMI2_ERROR;
-        }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
-        let Some(values) = values else {
-            return self.null_argument(F, "value[]");
-        };
-        for (&vr, &value) in vrs.iter().zip(values) {
-            if !self.settable_after_initialization(F, vr) {
-                return FMI2_ERROR;
-            }
-            if let Err(e) = self.sim.set_integer(vr, value) {
-                return self.access_error(F, &e, "Integer");
-            }
-        }
-        FMI2_OK
+        self.set_values("fmi2SetInteger", "Integer", vrs, values, |sim, vr, v| sim.set_integer(vr, v))
     }
 
     pub fn set_boolean(&mut self, vrs: Option<&[u32]>, values: Option<&[Fmi2Boolean]>) -> Fmi2Status {
-        const F: &str = "fmi2SetBoolean";
-        if !self.allowed(mask::SET, F) {
+        self.set_values("fmi2SetBoolean", "Boolean", vrs, values, |sim, vr, v| {
+            sim.set_boolean(vr, v != FMI2_FALSE)
+        })
+    }
+
+    /// fmi2SetReal / Integer / Boolean: every value reference must be settable in this state.
+    fn set_values<T: Copy>(
+        &mut self,
+        function: &'static str,
+        ty: &'static str,
+        vrs: Option<&[u32]>,
+        values: Option<&[T]>,
+        set: impl Fn(&mut Simulation, u32, T) -> Result<(), AccessError>,
+    ) -> Fmi2Status {
+        if !self.allowed(mask::SET, function) {
             return FMI2_ERROR;
         }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
+        let Some(vrs) = vrs else {
+            return self.null_argument(function, "vr[]");
+        };
         let Some(values) = values else {
-            return self.null_argument(F, "value[]");
+            return self.null_argument(function, "value[]");
         };
         for (&vr, &value) in vrs.iter().zip(values) {
-            if !self.settable_after_initialization(F, vr) {
+            if !self.settable_after_initialization(function, vr) {
                 return FMI2_ERROR;
             }
-            if let Err(e) = self.sim.set_boolean(vr, value != FMI2_FALSE) {
-                return self.access_error(F, &e, "Boolean");
+            if let Err(e) = set(&mut self.sim, vr, value) {
+                return self.access_error(function, &e, ty);
             }
         }
         FMI2_OK
