@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The project's test command: every Rust test, then the Python harness (fmpy, libcosim,
+# fmu-manipulation-toolbox) against the packaged FMU.
+#
+#   ./scripts/test.sh [extra pytest arguments]
+#
+# 1. the project venv .venv (Python 3.11), (re)created when missing or when
+#    tests/python/requirements.txt changed (its hash is kept in .venv);
+# 2. cargo test --release (all Rust unit and integration tests);
+# 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu);
+# 4. pytest tests/python.
+# Needs only Rust (cargo), Python 3.11 with pip (and venv), and a C toolchain for cargo.
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+ROOT="$(pwd)"
+# The FMU path contract is target/fmu/: use cargo's default target directory.
+unset CARGO_TARGET_DIR
+
+REQUIREMENTS="tests/python/requirements.txt"
+VENV=".venv"
+STAMP="$VENV/.requirements.sha256"
+
+declare -a PHASES=()
+phase_start=0
+begin() {
+    phase_start=$(date +%s.%N)
+    printf '\n==> %s\n' "$1"
+}
+end() {
+    local secs
+    secs=$(awk -v a="$phase_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+    PHASES+=("$(printf '%-34s %7ss' "$1" "$secs")")
+}
+fail() {
+    printf '\nFAILED: %s\n' "$1" >&2
+    exit 1
+}
+
+# --- 1. Python venv -----------------------------------------------------------------------
+find_python() {
+    local candidate
+    for candidate in python3.11 python3; do
+        if command -v "$candidate" >/dev/null 2>&1 &&
+            [ "$("$candidate" -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)" = "3.11" ]; then
+            command -v "$candidate"
+            return 0
+        fi
+    done
+    return 1
+}
+
+begin "Python venv ($VENV)"
+want_hash="$( (sha256sum "$REQUIREMENTS" 2>/dev/null || shasum -a 256 "$REQUIREMENTS") | cut -d' ' -f1)"
+have_hash="$(cat "$STAMP" 2>/dev/null || true)"
+if [ ! -x "$VENV/bin/python" ] || [ "$want_hash" != "$have_hash" ]; then
+    PYTHON="$(find_python)" || fail "Python 3.11 not found (tried python3.11, python3)"
+    echo "creating $VENV with $PYTHON ($("$PYTHON" --version 2>&1)); installing $REQUIREMENTS"
+    rm -rf "$VENV"
+    if "$PYTHON" -m venv "$VENV"; then
+        "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQUIREMENTS"
+    else
+        # No ensurepip (e.g. Debian without python3.11-venv): a venv without pip, filled by
+        # the interpreter's own pip.
+        echo "python -m venv failed; retrying without pip in the venv"
+        rm -rf "$VENV"
+        "$PYTHON" -m venv --without-pip "$VENV" || fail "cannot create $VENV"
+        "$PYTHON" -m pip --python "$VENV/bin/python" install --quiet --disable-pip-version-check -r "$REQUIREMENTS" ||
+            fail "cannot install $REQUIREMENTS into $VENV"
+    fi
+    echo "$want_hash" >"$STAMP"
+else
+    echo "$VENV is up to date with $REQUIREMENTS"
+fi
+"$VENV/bin/python" -c 'import fmpy, pytest, numpy, libcosimpy, fmu_manipulation_toolbox' ||
+    fail "$VENV lacks a required package; remove $VENV and rerun"
+end "Python venv"
+
+# --- 2. Rust tests ----------------------------------------------------------------------------
+begin "cargo test --release"
+cargo test --release || fail "cargo test --release"
+end "cargo test --release"
+
+# --- 3. The FMU ---------------------------------------------------------------------------------
+begin "cargo run --release -- fmu"
+cargo run --release --quiet -- fmu || fail "cargo run --release -- fmu"
+[ -f target/fmu/TaperedRollerBearing.fmu ] || fail "target/fmu/TaperedRollerBearing.fmu was not written"
+end "cargo run --release -- fmu"
+
+# --- 4. Python harness ---------------------------------------------------------------------------
+begin "pytest tests/python"
+"$VENV/bin/python" -m pytest tests/python -q -p no:cacheprovider "$@" || fail "pytest tests/python"
+end "pytest tests/python"
+
+printf '\n==> Summary (%s)\n' "$ROOT"
+for line in "${PHASES[@]}"; do
+    printf '  %s\n' "$line"
+done
+echo "All tests passed."
