@@ -196,3 +196,33 @@ def test_fmu_without_bearing_resource_falls_back_to_the_default_with_a_warning(f
     assert warnings and "bearing.json" in warnings[0].message, hub.since(mark)
     initialize(fmu)
     assert math.isfinite(fmu.getReal([model.vr("frictionTorque")])[0])
+
+
+def test_an_impossible_load_discards_the_step_and_keeps_the_last_solution(slaves, model, hub):
+    """No equilibrium (a radial load far beyond the bearing's capacity): fmi2Discard, logged
+    in logStatusDiscard; outputs stay those of the last successful step; the last successful
+    time is reported; terminate and reset still work."""
+    import ctypes
+
+    from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Real
+
+    fmu = slaves.new(model, name="overload")
+    initialize(fmu)
+    fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=H)
+    _, good, _ = read_outputs(fmu)
+    fmu.setReal([model.vr("Fy")], [1e8])
+    mark = hub.mark()
+    status = call_status(fmu.doStep, H, H)
+    assert status == FMI2_DISCARD, status
+    logged = hub.since(mark)
+    assert logged and logged[0].category == "logStatusDiscard" and "equilibrium" in logged[0].message, logged
+    status, reals, _ = read_outputs(fmu)
+    assert all(math.isfinite(v) for v in reals.values())
+    assert reals["Qo.max"] == good["Qo.max"]
+    t = fmi2Real()
+    fmu.fmi2GetRealStatus(fmu.component, fmi2LastSuccessfulTime, ctypes.byref(t))
+    assert t.value == pytest.approx(H, rel=1e-12)
+    assert call_status(fmu.terminate) == FMI2_OK
+    assert call_status(fmu.reset) == FMI2_OK
+    initialize(fmu)
+    assert call_status(fmu.doStep, 0.0, H) == FMI2_OK

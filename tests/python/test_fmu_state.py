@@ -124,3 +124,29 @@ def test_corrupt_or_foreign_serialized_state_is_rejected(running, models, slaves
     foreign = other.serializeFMUstate(s)
     other.freeFMUstate(s)
     assert call_status(fmu.deSerializeFMUstate, foreign) == FMI2_ERROR
+
+
+def test_fmu_states_survive_reset(running, model):
+    names = all_outputs(model)
+    fmu = running
+    state = fmu.getFMUstate()
+    reference = two_steps(fmu, 3 * H, names)
+    fmu.reset()
+    fmu.setFMUstate(state)
+    assert two_steps(fmu, 3 * H, names) == reference
+    fmu.freeFMUstate(state)
+
+
+def test_restoring_a_state_taken_before_a_failed_step_recovers(running, model):
+    """A snapshot before an impossible load lets the master retry the step with a smaller load."""
+    names = all_outputs(model)
+    fmu = running
+    before = fmu.getFMUstate()
+    fmu.setReal([model.vr("Fy")], [1e8])
+    assert call_status(fmu.doStep, 3 * H, H) != 0
+    fmu.setFMUstate(before)
+    fmu.setReal([model.vr("Fy")], [30000.0])
+    fmu.doStep(currentCommunicationPoint=3 * H, communicationStepSize=H)
+    out = snapshot(fmu, names)
+    assert all(math.isfinite(v) for v in out)
+    fmu.freeFMUstate(before)
