@@ -323,8 +323,10 @@ impl Instance {
             stop: stop_defined.then_some(stop),
             time: start,
         };
-        self.log
-            .event(format_args!("{F}: startTime = {start}, stopTime = {:?}", self.clock.stop));
+        match self.clock.stop {
+            Some(stop) => self.log.event(format_args!("{F}: startTime = {start}, stopTime = {stop}")),
+            None => self.log.event(format_args!("{F}: startTime = {start}, no stop time")),
+        }
         FMI2_OK
     }
 
@@ -586,10 +588,7 @@ impl Instance {
         }
         let step = end - now;
         if step <= 0.0 || !step.is_finite() {
-            self.log.error(format_args!(
-                "{F}: nothing to step: from {now} to {end} (stop time {:?})",
-                self.clock.stop
-            ));
+            self.log.error(format_args!("{F}: nothing to step: from {now} to {end}"));
             self.machine = Machine::Alive(State::Error);
             return FMI2_ERROR;
         }

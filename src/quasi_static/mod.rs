@@ -928,7 +928,13 @@ impl QuasiStatic {
             "Newton solver stopped after {iterations} iterations with relative residual {residual:.3e} (Fx = {:.6} N, Fr = {:.6} N, speed = {:.6} rad/s)",
             inputs.fx, fr, inputs.speed
         );
-        if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.5 * fr * g.cup_angle.tan() {
+        let (fc, _, _) = self.inertial_loads(inputs.speed);
+        if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.0 && fr == 0.0 && fc > 0.0 {
+            message.push_str(&format!(
+                "; the bearing is not seated: with Fx = {:.1} N the rollers' centrifugal force ({:.3} N each) pushes the cone out through the flange; a tapered roller bearing running at speed needs a minimum axial load",
+                inputs.fx, fc
+            ));
+        } else if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.5 * fr * g.cup_angle.tan() {
             message.push_str(&format!(
                 "; a single tapered roller bearing needs an axial force of the order of Fr tan(cup angle) = {:.1} N to carry a radial load, and Fx = {:.1} N does not seat it",
                 fr * g.cup_angle.tan(),

@@ -130,12 +130,6 @@ def test_message_text_is_escaped_for_printf_and_fmi(slaves, model, hub, name):
 RUST_DEBUG = re.compile(r"\bSome\(|\bNone\b")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="product bug: fmi2SetupExperiment logs 'stopTime = Some(0.005)' / 'stopTime = None' "
-    "(Rust Debug of Option<f64>, src/fmi/instance.rs setup_experiment; also the 'nothing to step' "
-    "error of do_step)",
-)
 @pytest.mark.parametrize("stop", [0.005, None], ids=["stop-time", "no-stop-time"])
 def test_messages_have_no_rust_debug_syntax(slaves, model, hub, stop):
     fmu = slaves.new(model, name="debug-syntax", logging_on=True)
