@@ -55,6 +55,19 @@ pub struct Parameters {
     pub centrifugal: bool,
     /// Diameter deviation of each roller (m), one per roller.
     pub roller_dd: Vec<f64>,
+    /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4)).
+    pub integrator: u32,
+    /// Dynamic model: 3-DOF cage (radial translations and rotation) driven by its contacts;
+    /// false: kinematic cage centred at the mean roller orbit.
+    pub cage_dynamic: bool,
+    /// Dynamic model: damping ratio of raceway and flange contacts.
+    pub contact_damping: f64,
+    /// Dynamic model: mass of the cone and what moves with it (kg).
+    pub cone_mass: f64,
+    /// Dynamic model: start at rest instead of from the quasi-static solution.
+    pub start_from_rest: bool,
+    /// Dynamic model: largest integrator step (s).
+    pub max_step: f64,
 }
 
 impl Parameters {
@@ -89,6 +102,12 @@ impl Parameters {
             gyroscopic: true,
             centrifugal: true,
             roller_dd: vec![0.0; b.roller_count],
+            integrator: 0,
+            cage_dynamic: true,
+            contact_damping: 0.05,
+            cone_mass: default_cone_mass(b),
+            start_from_rest: false,
+            max_step: 1e-4,
         }
     }
 
@@ -170,14 +189,32 @@ impl Parameters {
                 );
             }
         }
-        if self.fidelity == Fidelity::Dynamic {
+        if self.integrator > 0 {
             return bad(
-                "fidelity",
-                "the dynamic model (fidelity = 1) is not available in this build yet".into(),
+                "integrator",
+                format!("must be 0 (adaptive Dormand-Prince 5(4)), got {}", self.integrator),
             );
+        }
+        if !(self.contact_damping.is_finite() && (0.0..=1.0).contains(&self.contact_damping)) {
+            return bad("contact.damping", format!("must be in [0, 1], got {}", self.contact_damping));
+        }
+        if !(self.cone_mass.is_finite() && self.cone_mass >= 1e-3 && self.cone_mass <= 1e5) {
+            return bad("cone.mass", format!("must be in [0.001, 1e5] kg, got {}", self.cone_mass));
+        }
+        if !(self.max_step.is_finite() && self.max_step >= 1e-9 && self.max_step <= 1.0) {
+            return bad("maxStep", format!("must be in [1e-9, 1] s, got {}", self.max_step));
         }
         Ok(())
     }
+}
+
+/// Mass of the cone ring: steel annulus between the bore and the mid-roller cone contact
+/// radius, over the bearing width (a documented default; add the shaft's share as needed).
+pub fn default_cone_mass(b: &Bearing) -> f64 {
+    let ri = 0.5 * b.pitch_diameter - b.roller_mean_radius() * (b.roller_axis_angle()).cos();
+    let ro = ri.max(0.5 * b.bore * 1.05);
+    let ring = std::f64::consts::PI * (ro * ro - 0.25 * b.bore * b.bore) * b.width;
+    (ring * b.ring_material.density).max(1e-3)
 }
 
 /// Continuous inputs (SI).
@@ -282,6 +319,9 @@ pub struct Outputs {
     pub cage_speed: f64,
     pub solver_iterations: i32,
     pub solver_residual: f64,
+    pub integrator_steps: i32,
+    pub integrator_rhs: i32,
+    pub integrator_rejected: i32,
     pub tilt: Vec<f64>,
     pub skew: Vec<f64>,
     pub qi: Vec<f64>,
@@ -401,13 +441,17 @@ pub enum ModelError {
     NoEquilibrium {
         message: String,
     },
+    /// The dynamic integrator could not meet its tolerance (step size underflow, NaN).
+    IntegratorFailure {
+        message: String,
+    },
 }
 
 impl ModelError {
     pub fn severity(&self) -> Severity {
         match self {
             ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => Severity::Error,
-            ModelError::NoEquilibrium { .. } => Severity::Discard,
+            ModelError::NoEquilibrium { .. } | ModelError::IntegratorFailure { .. } => Severity::Discard,
         }
     }
 }
@@ -422,6 +466,7 @@ impl fmt::Display for ModelError {
             ModelError::NoEquilibrium { message } => {
                 write!(f, "no quasi-static equilibrium: {message}")
             }
+            ModelError::IntegratorFailure { message } => write!(f, "dynamic integration failed: {message}"),
         }
     }
 }

@@ -166,6 +166,12 @@ impl Simulation {
     fn ensure_model(&mut self) -> Result<(), ModelError> {
         if self.model.is_none() {
             self.state.params.validate(&self.bearing)?;
+            if self.state.params.fidelity == Fidelity::Dynamic {
+                return Err(ModelError::InvalidParameter {
+                    name: "fidelity".into(),
+                    message: "the dynamic model (fidelity = 1) is not available in this build yet".into(),
+                });
+            }
             let qs = QuasiStatic::new(&self.bearing, &self.state.params)?;
             self.model = Some(Model::QuasiStatic(Box::new(qs)));
         }
@@ -237,6 +243,9 @@ impl Simulation {
             var::CAGE_ANGLE0 => p.cage_angle0,
             var::ROLLER_CROWN_DROP => p.crown_drop,
             var::FLANGE_MU0 => p.flange_mu0,
+            var::CONTACT_DAMPING => p.contact_damping,
+            var::CONE_MASS => p.cone_mass,
+            var::MAX_STEP => p.max_step,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -316,6 +325,9 @@ impl Simulation {
             var::CAGE_ANGLE0 => &mut p.cage_angle0,
             var::ROLLER_CROWN_DROP => &mut p.crown_drop,
             var::FLANGE_MU0 => &mut p.flange_mu0,
+            var::CONTACT_DAMPING => &mut p.contact_damping,
+            var::CONE_MASS => &mut p.cone_mass,
+            var::MAX_STEP => &mut p.max_step,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             var::SPEED => &mut i.speed,
             var::XI => &mut i.xi,
@@ -362,8 +374,12 @@ impl Simulation {
             var::PRELOAD => p.preload as i32,
             var::SLICES => p.slices as i32,
             var::OUTER_LOBES => p.outer_lobes as i32,
+            var::INTEGRATOR => p.integrator as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
+            var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
+            var::INTEGRATOR_RHS => self.state.outputs.integrator_rhs,
+            var::INTEGRATOR_REJECTED => self.state.outputs.integrator_rejected,
             _ => return Err(AccessError::UnknownReference(vr)),
         })
     }
@@ -391,6 +407,7 @@ impl Simulation {
             var::PRELOAD => p.preload = if value == 0 { Preload::Force } else { Preload::Displacement },
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
+            var::INTEGRATOR => p.integrator = value as u32,
             _ => return Err(AccessError::UnknownReference(vr)),
         }
         if *p != old {
@@ -409,6 +426,8 @@ impl Simulation {
             var::SKEW_MODEL => p.skew_model,
             var::GYROSCOPIC => p.gyroscopic,
             var::CENTRIFUGAL => p.centrifugal,
+            var::CAGE_DYNAMIC => p.cage_dynamic,
+            var::START_FROM_REST => p.start_from_rest,
             _ => return Err(AccessError::UnknownReference(vr)),
         })
     }
@@ -426,6 +445,8 @@ impl Simulation {
             var::SKEW_MODEL => &mut p.skew_model,
             var::GYROSCOPIC => &mut p.gyroscopic,
             var::CENTRIFUGAL => &mut p.centrifugal,
+            var::CAGE_DYNAMIC => &mut p.cage_dynamic,
+            var::START_FROM_REST => &mut p.start_from_rest,
             _ => return Err(AccessError::UnknownReference(vr)),
         };
         if *slot != value {
