@@ -301,6 +301,13 @@ pub struct Outputs {
     pub friction_torque_raceway: f64,
     pub friction_torque_flange: f64,
     pub friction_torque_cage: f64,
+    /// Torques each ring feels about the bearing axis ([L22] M_inner, M_outer).
+    pub friction_torque_cone: f64,
+    pub friction_torque_cup: f64,
+    /// Largest total sliding friction force on one roller.
+    pub sliding_friction_max: f64,
+    /// Largest roller-cage pocket force (skew model).
+    pub qc_max: f64,
     pub power_loss: f64,
     pub cone_x: f64,
     pub cone_y: f64,
@@ -335,6 +342,8 @@ pub struct Outputs {
     pub nis: Vec<f64>,
     pub nos: Vec<f64>,
     pub nfs: Vec<f64>,
+    /// Total sliding friction force on each roller (cone + cup + flange).
+    pub sliding_friction: Vec<f64>,
 }
 
 impl Outputs {
@@ -355,6 +364,7 @@ impl Outputs {
             nis: v(),
             nos: v(),
             nfs: v(),
+            sliding_friction: v(),
             ..Default::default()
         }
     }
@@ -369,6 +379,8 @@ impl Outputs {
         self.qi_max = self.qi.iter().fold(0.0, |m, q| m.max(*q));
         self.qo_max = self.qo.iter().fold(0.0, |m, q| m.max(*q));
         self.qf_max = self.qf.iter().fold(0.0, |m, q| m.max(*q));
+        self.sliding_friction_max = self.sliding_friction.iter().fold(0.0, |m, q| m.max(*q));
+        self.qc_max = self.qc.iter().fold(0.0, |m, q| m.max(*q));
         self.loaded_rollers = self.qi.iter().zip(&self.qo).filter(|(a, b)| **a > 0.0 && **b > 0.0).count() as i32;
     }
 
@@ -379,6 +391,10 @@ impl Outputs {
             self.friction_torque_raceway,
             self.friction_torque_flange,
             self.friction_torque_cage,
+            self.friction_torque_cone,
+            self.friction_torque_cup,
+            self.sliding_friction_max,
+            self.qc_max,
             self.power_loss,
             self.cone_x,
             self.cone_y,
@@ -411,6 +427,7 @@ impl Outputs {
                 &self.nis,
                 &self.nos,
                 &self.nfs,
+                &self.sliding_friction,
             ]
             .iter()
             .all(|a| a.iter().all(|v| v.is_finite()))

@@ -258,6 +258,10 @@ impl Simulation {
             var::FRICTION_TORQUE_RACEWAY => o.friction_torque_raceway,
             var::FRICTION_TORQUE_FLANGE => o.friction_torque_flange,
             var::FRICTION_TORQUE_CAGE => o.friction_torque_cage,
+            var::FRICTION_TORQUE_CONE => o.friction_torque_cone,
+            var::FRICTION_TORQUE_CUP => o.friction_torque_cup,
+            var::SLIDING_FRICTION_MAX => o.sliding_friction_max,
+            var::QC_MAX => o.qc_max,
             var::POWER_LOSS => o.power_loss,
             var::CONE_X => o.cone_x,
             var::CONE_Y => o.cone_y,
@@ -287,6 +291,7 @@ impl Simulation {
             var::ROLLER_NIS => o.nis[j],
             var::ROLLER_NOS => o.nos[j],
             var::ROLLER_NFS => o.nfs[j],
+            var::ROLLER_SLIDING_FRICTION => o.sliding_friction[j],
             _ => return Err(AccessError::UnknownReference(vr)),
         })
     }
