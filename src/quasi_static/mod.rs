@@ -202,6 +202,11 @@ impl QuasiStatic {
         self.cage_ratio * speed
     }
 
+    /// Roller spin about its own axis relative to the cage, per unit cone speed.
+    pub fn spin_ratio(&self) -> f64 {
+        self.spin_ratio
+    }
+
     /// Number of unknowns.
     pub fn n_unknowns(&self) -> usize {
         3 + 3 * self.geometry.z
