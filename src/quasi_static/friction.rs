@@ -32,6 +32,8 @@ pub struct SliceWeights {
     pub slide: Vec<f64>,
     /// Axial station times the sign of the sliding speed.
     pub skew: Vec<f64>,
+    /// Sign of the sliding speed.
+    pub sign: Vec<f64>,
 }
 
 /// Kinematics of one contact point per unit cone speed, in the cage frame.
@@ -57,6 +59,22 @@ impl Kinematics {
 pub struct TorqueParts {
     pub raceway: f64,
     pub flange: f64,
+    /// Torque the cone feels ([L22] M_inner) and the cup feels ([L22] M_outer), with the sign of speed.
+    pub cone: f64,
+    pub cup: f64,
+}
+
+/// Friction of one raceway contact of one roller.
+#[derive(Debug, Clone, Copy, Default)]
+struct RacewayFriction {
+    /// Friction power per unit cone speed (N m).
+    torque: f64,
+    /// Skew moment of the traction on the roller (N m).
+    skew: f64,
+    /// Net sliding traction force on the ring along its direction of motion e_t (N).
+    slide_force: f64,
+    /// Rolling resistance (N, >= 0).
+    rolling: f64,
 }
 
 /// Per-contact data of one raceway line.
@@ -78,6 +96,8 @@ pub struct FrictionModel {
     flange: Kinematics,
     /// Axial station of the flange contact along the roller axis (for its skew moment).
     flange_s: f64,
+    /// Cone and cup raceway radii at mid-roller (lever arms of the ring torques).
+    ring_radii: (f64, f64),
     slice_len: f64,
     eta0: f64,
     alpha: f64,
@@ -96,6 +116,7 @@ impl FrictionModel {
         let weights = |kin: &dyn Fn(usize) -> Kinematics| SliceWeights {
             slide: (0..g.slices).map(|k| kin(k).slide.abs()).collect(),
             skew: (0..g.slices).map(|k| g.slice_s[k] * kin(k).slide.signum()).collect(),
+            sign: (0..g.slices).map(|k| kin(k).slide.signum()).collect(),
         };
         let mid = g.slices / 2;
         let line = |l: &ContactLine, kin: &dyn Fn(usize) -> Kinematics| LineFriction {
@@ -130,6 +151,7 @@ impl FrictionModel {
             cup: line(&g.cup, &cup_kin),
             flange,
             flange_s,
+            ring_radii: g.pitch_contact_radii(),
             slice_len: g.slice_len,
             eta0: p.eta0,
             alpha: p.alpha,
@@ -139,16 +161,17 @@ impl FrictionModel {
         }
     }
 
-    /// One raceway contact: (torque per unit sign of speed, skew moment on the roller).
-    fn raceway(&self, e_prime: f64, line: &LineFriction, s: &LineSums, speed: f64, lubrication: Lubrication) -> (f64, f64) {
+    /// One raceway contact: friction power per unit speed, skew moment on the roller, net
+    /// sliding traction on the ring and rolling resistance.
+    fn raceway(&self, e_prime: f64, line: &LineFriction, s: &LineSums, speed: f64, lubrication: Lubrication) -> RacewayFriction {
         if s.q <= 0.0 {
-            return (0.0, 0.0);
+            return RacewayFriction::default();
         }
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         // Load-weighted mean sliding speed ratio along the line.
         let slide = s.q_slide / s.q;
-        let mu = match lubrication {
-            Lubrication::Dry => tr::dry_mu(self.mu, speed * slide).abs(),
+        let (mu, f_roll) = match lubrication {
+            Lubrication::Dry => (tr::dry_mu(self.mu, speed * slide).abs(), 0.0),
             Lubrication::Ehl => {
                 let l = s.loaded as f64 * self.slice_len;
                 let w = s.q / l;
@@ -160,11 +183,16 @@ impl FrictionModel {
                 let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
                 let mu_fl = tr::full_film_mu(self.eta0, speed * slide, h, p_mean).abs();
                 let mu = tr::traction_mu(lambda, slide_roll, mu_fl);
-                let f_roll = tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar, s.q, l);
-                return (mu * s.q_slide + f_roll * line.mid.entrain, mu * sign * s.q_skew);
+                (mu, tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar, s.q, l))
             }
         };
-        (mu * s.q_slide, mu * sign * s.q_skew)
+        RacewayFriction {
+            torque: mu * s.q_slide + f_roll * line.mid.entrain,
+            skew: mu * sign * s.q_skew,
+            // Traction on the ring = +mu q sgn(v_s) e_t with v_s = roller - ring.
+            slide_force: mu * sign * s.q_sign,
+            rolling: f_roll,
+        }
     }
 
     /// Friction torque parts from the converged roller evaluations; fills the skew moments
@@ -181,13 +209,19 @@ impl FrictionModel {
         let speed = inputs.speed;
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let mut parts = TorqueParts::default();
+        let (ri, ro) = self.ring_radii;
         for (j, e) in evals.iter().enumerate().take(evaluated) {
-            let (t_cone, n_cone) = self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication);
-            let (t_cup, n_cup) = self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication);
-            parts.raceway += t_cone + t_cup;
-            out.nis[j] = n_cone;
-            out.nos[j] = n_cup;
+            let cone = self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication);
+            let cup = self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication);
+            parts.raceway += cone.torque + cup.torque;
+            out.nis[j] = cone.skew;
+            out.nos[j] = cup.skew;
             out.nfs[j] = 0.0;
+            // [L22]: M_inner = (F_ro,i + F_rs,i) R_i + F_fs (R_i + e_r), M_outer = (F_ro,e - F_rs,e) R_e,
+            // here with signed traction (force on the ring along e_t) and the sign of speed.
+            parts.cone += (sign * cone.rolling - cone.slide_force) * ri;
+            parts.cup += (sign * cup.rolling + cup.slide_force) * ro;
+            let mut sliding = cone.slide_force.abs() + cup.slide_force.abs();
             let qf = e.qf;
             if let (Some(f), true) = (&g.flange, qf > 0.0) {
                 let kin = self.flange;
@@ -205,16 +239,22 @@ impl FrictionModel {
                 parts.flange += f_total * kin.slide.abs();
                 // Traction on the roller opposes its sliding: F_t = -f sgn(v_s); N = -s F_t.
                 out.nfs[j] = self.flange_s * f_total * sign * kin.slide.signum();
+                parts.cone -= f_total * sign * kin.slide.signum() * f.rib_radius;
+                sliding += f_total;
             }
+            out.sliding_friction[j] = sliding;
         }
         let copies = evals.len() as f64 / evaluated as f64;
         for j in evaluated..evals.len() {
             out.nis[j] = out.nis[0];
             out.nos[j] = out.nos[0];
             out.nfs[j] = out.nfs[0];
+            out.sliding_friction[j] = out.sliding_friction[0];
         }
         parts.raceway *= sign * copies;
         parts.flange *= sign * copies;
+        parts.cone *= copies;
+        parts.cup *= copies;
         parts
     }
 }

@@ -18,6 +18,7 @@
 //! residual, so converged solutions are exact).
 
 mod friction;
+mod skew;
 
 use crate::bearing::Bearing;
 use crate::contact::{self, LineLaw};
@@ -74,6 +75,8 @@ struct LineSums {
     /// (skew moment weight) over the slices, and the number of loaded slices.
     q_slide: f64,
     q_skew: f64,
+    /// Sum of q sgn(v_s): the net sliding traction per unit friction coefficient.
+    q_sign: f64,
     loaded: u32,
     /// Largest interference over the slices (negative: the line is separated by that gap).
     max_delta: f64,
@@ -91,6 +94,7 @@ struct SliceTable {
     crown: Vec<f64>,
     slide: Vec<f64>,
     skew: Vec<f64>,
+    sign: Vec<f64>,
 }
 
 impl SliceTable {
@@ -103,6 +107,7 @@ impl SliceTable {
             crown: crown.to_vec(),
             slide: w.slide.clone(),
             skew: w.skew.clone(),
+            sign: w.sign.clone(),
         }
     }
 }
@@ -145,6 +150,8 @@ pub struct QuasiStatic {
     max_step: f64,
     /// Jacobian regularisation of roller blocks (N/m).
     regularisation: f64,
+    /// The roller skew model [D19] (`skewModel` = true).
+    skew: Option<skew::SkewSetup>,
 }
 
 impl QuasiStatic {
@@ -176,7 +183,11 @@ impl QuasiStatic {
         let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
         let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), &friction.cone_weights);
         let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, &friction.cup_weights);
+        let skew = params
+            .skew_model
+            .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
+            skew,
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -290,13 +301,14 @@ impl QuasiStatic {
             ..LineSums::default()
         };
         let n = t.lever.len();
-        let (lever, lever_s, chi, crown, slide, skew) = (
+        let (lever, lever_s, chi, crown, slide, skew, sign) = (
             &t.lever[..n],
             &t.lever_s[..n],
             &t.chi[..n],
             &t.crown[..n],
             &t.slide[..n],
             &t.skew[..n],
+            &t.sign[..n],
         );
         for k in 0..n {
             let delta = base - theta * lever[k] + gamma * chi[k] - crown[k];
@@ -314,6 +326,7 @@ impl QuasiStatic {
             s.k_lever2 += dq * lv * lv;
             s.q_slide += q * slide[k];
             s.q_skew += q * skew[k];
+            s.q_sign += q * sign[k];
             s.loaded += 1;
             s.extrapolated |= ext;
         }
@@ -716,7 +729,23 @@ impl QuasiStatic {
 
     /// Solve the equilibrium for `inputs` with roller 1 at `cage_angle`. `warm` holds the
     /// unknowns of the previous solve (replaced by the solution); `out` receives everything.
+    /// With `skewModel` the roller skew equilibrium is solved too (see `skew.rs`).
     pub fn solve(&mut self, inputs: &Inputs, cage_angle: f64, warm: &mut Vec<f64>, out: &mut Outputs) -> Result<SolveReport, ModelError> {
+        if self.skew.is_some() {
+            self.solve_skew(inputs, cage_angle, warm, out)
+        } else {
+            self.solve_in_plane(inputs, cage_angle, warm, out)
+        }
+    }
+
+    /// The in-plane equilibrium (3 unknowns per roller, no skew).
+    fn solve_in_plane(
+        &mut self,
+        inputs: &Inputs,
+        cage_angle: f64,
+        warm: &mut Vec<f64>,
+        out: &mut Outputs,
+    ) -> Result<SolveReport, ModelError> {
         self.prepare(inputs, cage_angle);
         let n = self.n_unknowns();
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
@@ -997,6 +1026,8 @@ impl QuasiStatic {
         out.friction_torque_flange = torque.flange;
         out.friction_torque_cage = 0.0;
         out.friction_torque = torque.raceway + torque.flange;
+        out.friction_torque_cone = torque.cone;
+        out.friction_torque_cup = torque.cup;
         out.power_loss = out.friction_torque * inputs.speed;
         out.summarize();
     }

@@ -570,3 +570,38 @@ fn displacement_preload_sweeps_converge_from_cold_starts() {
         }
     }
 }
+
+#[test]
+#[ignore]
+fn debug_skew() {
+    let (b, mut p, mut i) = setup("32018X");
+    p.skew_model = true;
+    p.mu = std::env::var("MU").map(|v| v.parse().unwrap()).unwrap_or(0.1);
+    if let Ok(v) = std::env::var("EPS") {
+        p.pocket_clearance = v.parse().unwrap();
+    }
+    if std::env::var("DISP").is_ok() {
+        p.preload = Preload::Displacement;
+        i.axial_displacement = 10e-6;
+    }
+    let s = solve(&b, &p, &i);
+    let o = &s.out;
+    println!("iters {} res {:.2e}", s.report.iterations, s.report.residual);
+    for j in 0..b.roller_count {
+        println!(
+            "{j:2} qi {:9.1} qo {:9.1} qf {:8.1} qc {:8.2} skew {:9.5} tilt {:9.2e} nis {:8.4} nos {:8.4} nfs {:8.4}",
+            o.qi[j], o.qo[j], o.qf[j], o.qc[j], o.skew[j], o.tilt[j], o.nis[j], o.nos[j], o.nfs[j]
+        );
+    }
+    println!(
+        "T {:.4} race {:.4} flange {:.4} cage {:.4} cone {:.4} cup {:.4} Fx {:.1} loaded {}",
+        o.friction_torque,
+        o.friction_torque_raceway,
+        o.friction_torque_flange,
+        o.friction_torque_cage,
+        o.friction_torque_cone,
+        o.friction_torque_cup,
+        o.reaction_fx,
+        o.loaded_rollers
+    );
+}
