@@ -19,6 +19,7 @@
 
 mod friction;
 mod skew;
+pub mod studies;
 
 use crate::bearing::Bearing;
 use crate::contact::{self, LineLaw};
