@@ -18,6 +18,8 @@ pub mod package;
 pub mod paths;
 pub mod scenario;
 pub mod simulate;
+pub mod study;
+pub mod stress;
 
 /// Tapered roller bearing element: package the FMI 2.0 Co-Simulation FMU, or run a scenario
 /// with the same model code without FMI.
@@ -36,6 +38,10 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
     /// Package the default FMU, run scenarios/demo.json and print a short table.
     Demo(demo::DemoArgs),
+    /// Run the cases of the studies [D19], [L22], [Y22]; write docs/results-studies.md and docs/figures/.
+    Study(study::StudyArgs),
+    /// Run the numerical stress matrix (issue 6) and update docs/robustness.md.
+    Stress(stress::StressArgs),
 }
 
 /// Run the parsed command line.
@@ -44,6 +50,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Fmu(args) => package::run(args),
         Command::Simulate(args) => simulate::run(args),
         Command::Demo(args) => demo::run(args),
+        Command::Study(args) => study::run(args),
+        Command::Stress(args) => stress::run(args),
     }
 }
 

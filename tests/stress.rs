@@ -1,0 +1,120 @@
+//! The quick subset of the numerical stress matrix (issue 6): the same cases as
+//! `cargo run --release -- stress`, with shorter time-dependent runs, through `Simulation`
+//! and (a representative subset) through the FMU's C ABI, compared bitwise.
+//!
+//! Failures that are known and reported (physics or validation, not owned by the matrix) are
+//! listed in [`KNOWN`] with the text their reason must contain; any other failure fails the
+//! test. A known failure that no longer occurs is printed, so the list can be pruned.
+#![cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
+
+#[allow(dead_code)]
+#[path = "../src/cli/stress/matrix.rs"]
+mod matrix;
+
+/// (case id, text in the failure reason) of the failures reported to the lead (see
+/// docs/robustness.md, "Findings").
+const KNOWN: &[(&str, &str)] = &[
+    // F1: a tapered bearing at speed below its seating axial load is refused with "the load
+    // is beyond the model's range" instead of "not seated" (quasi_static explain_failure).
+    ("TRB130x230/load-axial/0.001C0", "does not say why"),
+    ("TRB130x230/load-combined/0.001C0", "does not say why"),
+    ("TRB130x230/load-combined/0.01C0", "does not say why"),
+    // F2: Fr tan(a) / 2 < Fa < Fr tan(a): same misleading message (the explanation's
+    // threshold is Fr tan(a) / 2).
+    ("TRB130x230/unloaded/too little axial force (Fa = 0.6 Fr tan a)", "does not say why"),
+    ("32018X/unloaded/too little axial force (Fa = 0.6 Fr tan a)", "does not say why"),
+    ("32008/unloaded/too little axial force (Fa = 0.6 Fr tan a)", "does not say why"),
+    // F3: slices = 1 (allowed by the parameter's range) has no equilibrium on a tapered
+    // bearing, even at the preset's own operating point.
+    ("TRB130x230/slices/1 slices", "unexpected refusal"),
+    ("32018X/slices/1 slices", "unexpected refusal"),
+    ("32008/slices/1 slices", "unexpected refusal"),
+    // F4: clearance = +5 % D is accepted, but seating the cone then needs an axial shift
+    // (c/2)/tan(a_o) beyond the solver's displacement limit (5 % D).
+    ("TRB130x230/parameters/clearance = +5 % D", "unexpected refusal"),
+    ("32018X/parameters/clearance = +5 % D", "unexpected refusal"),
+    ("32008/parameters/clearance = +5 % D", "unexpected refusal"),
+    // F5: the Newton solver stalls (residual 1e-5 .. 1e-2 after 100 iterations) and the
+    // message gives no reason: large shaft deflection, many deep lobes.
+    ("TRB130x230/deflection/xi 0.3 deg", "gives no reason"),
+    ("32018X/transient/deflection ramp 0 to 0.3 deg", "gives no reason"),
+    ("32008/parameters/64 lobes, waveform 5 % D", "gives no reason"),
+];
+
+fn threads() -> usize {
+    std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
+}
+
+#[test]
+fn quick_stress_matrix_has_no_new_failures() {
+    let cases = matrix::cases(0, true);
+    assert!(cases.len() >= 200, "only {} cases", cases.len());
+    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress");
+    let started = std::time::Instant::now();
+    let run = matrix::Run::execute(cases, threads(), &scratch);
+    let failures = run.failures();
+    eprintln!(
+        "{} cases in {:.1} s: {} passed, {} refused with a clear message, {} FAILED ({} known); FMU subset {} cases",
+        run.cases.len(),
+        started.elapsed().as_secs_f64(),
+        run.count("passed"),
+        run.count("refused"),
+        failures.len(),
+        KNOWN.len(),
+        run.fmu.len()
+    );
+    let is_known = |f: &str| KNOWN.iter().any(|(id, why)| f.starts_with(&format!("{id}: ")) && f.contains(why));
+    let new: Vec<&String> = failures.iter().filter(|f| !is_known(f)).collect();
+    for (id, _) in KNOWN {
+        if !failures.iter().any(|f| f.starts_with(&format!("{id}: "))) {
+            eprintln!("known failure no longer occurs (remove it from KNOWN): {id}");
+        }
+    }
+    assert!(
+        new.is_empty(),
+        "new stress failures:\n{}",
+        new.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n")
+    );
+    // Nothing non-finite, ever: a refusal leaves finite outputs (checked per case), and
+    // every passing case checked every output after every step.
+    assert!(run.count("passed") > run.cases.len() / 2);
+}
+
+#[test]
+fn fidelity_1_cases_are_listed_and_run_without_failure() {
+    let f0 = matrix::cases(0, true);
+    let f1 = matrix::cases(1, true);
+    assert_eq!(f0.len(), f1.len(), "fidelity 1 runs the same list");
+    assert!(f1
+        .iter()
+        .all(|c| c.params.first() == Some(&("fidelity", matrix::Value::Integer(1)))));
+    // One case per preset: fidelity 1 reports 'not available' until the dynamic model lands,
+    // then it must neither crash nor emit NaN (the full list, with all checks, runs with
+    // `stress --fidelity 1`).
+    let presets = matrix::presets();
+    let mut seen = std::collections::HashSet::new();
+    for c in f1.iter().filter(|c| c.id.ends_with("load-combined/0.1C0") && seen.insert(c.preset)) {
+        let r = matrix::run_on_simulation(c, &presets);
+        let crashed = |why: &str| why.contains("panic") || why.contains("non-finite");
+        assert!(
+            !matches!(&r.outcome, matrix::Outcome::Failed { reason } if crashed(reason)),
+            "{}: {:?}",
+            c.id,
+            r.outcome
+        );
+    }
+}
+
+#[test]
+fn static_capacities_and_limiting_speeds_are_sane() {
+    for p in matrix::presets() {
+        // C0 of a bearing of this size: hundreds of N per mm^2 of roller projection.
+        let b = &p.bearing;
+        let projected = b.roller_count as f64 * b.roller_length * b.roller_mean_diameter * 1e6;
+        assert!(p.c0 > 20.0 * projected && p.c0 < 50.0 * projected, "{}: C0 = {}", p.name(), p.c0);
+        assert!(p.n_lim > 0.0 && p.n_lim.is_finite());
+        if p.tapered() {
+            assert!(p.fa0 > 0.0 && p.seating_fx_min(p.speed) >= 0.0);
+        }
+    }
+}
