@@ -49,7 +49,7 @@ impl LineLaw {
 
     /// Load of slice `k` at interference `delta`, its derivative, and whether the law was
     /// extrapolated beyond its validity range.
-    #[inline]
+    #[inline(always)]
     pub fn load(&self, k: usize, delta: f64) -> (f64, f64, bool) {
         if delta <= 0.0 {
             return (0.0, 0.0, false);

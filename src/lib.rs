@@ -7,12 +7,14 @@
 //! - [`contact`]: contact laws (Johnson, Palmgren, Hertz point contact)
 //! - [`tribology`]: film thickness, traction, rolling resistance
 //! - [`quasi_static`]: fidelity 0, the quasi-static equilibrium and friction torque
+//! - [`dynamic`]: fidelity 1, roller/cage/cone dynamics with an adaptive integrator
 //! - [`model`], [`simulation`]: parameters/inputs/outputs and the steppable element
 //! - [`variables`], [`model_description`]: the variable table and modelDescription.xml
 //! - [`fmi`]: the FMI 2.0 C ABI adapter
 
 pub mod bearing;
 pub mod contact;
+pub mod dynamic;
 pub mod fastmath;
 pub mod fmi;
 pub mod geometry;

@@ -10,6 +10,7 @@
 //!   consistent.
 
 use crate::bearing::Bearing;
+use crate::dynamic::{Dynamic, DynamicState};
 use crate::model::{Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use crate::quasi_static::QuasiStatic;
 use crate::variables::{self as var, Causality};
@@ -49,6 +50,11 @@ impl std::error::Error for AccessError {}
 #[derive(Debug, Clone)]
 enum Model {
     QuasiStatic(Box<QuasiStatic>),
+    /// The dynamic model keeps its quasi-static sibling to start from its solution.
+    Dynamic {
+        qs: Box<QuasiStatic>,
+        dynamic: Box<Dynamic>,
+    },
 }
 
 /// The serializable part of a simulation (everything but derived data).
@@ -64,6 +70,8 @@ struct State {
     /// Warm start of the quasi-static solver (empty before the first solve).
     warm_start: Vec<f64>,
     report: SolveReport,
+    /// State of the dynamic model (fidelity 1), once initialised.
+    dynamic: Option<DynamicState>,
 }
 
 /// A bearing element ready to be parameterised, initialised and stepped.
@@ -99,6 +107,7 @@ impl Simulation {
                 dirty: true,
                 warm_start: Vec::new(),
                 report: SolveReport::default(),
+                dynamic: None,
             },
             model: None,
         }
@@ -134,6 +143,7 @@ impl Simulation {
         self.state.time = start_time;
         self.state.cage_angle = self.state.params.cage_angle0;
         self.state.dirty = true;
+        self.state.dynamic = None;
         self.model = None;
         self.solve_if_dirty()
     }
@@ -143,12 +153,22 @@ impl Simulation {
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.state.inputs.validate(&self.bearing)?;
         self.ensure_model()?;
-        let cage_speed = match self.model.as_ref().expect("model built") {
-            Model::QuasiStatic(m) => m.cage_speed(self.state.inputs.speed),
-        };
-        self.state.cage_angle = wrap_angle(self.state.cage_angle + cage_speed * h);
-        self.state.time = t + h;
-        self.state.dirty = true;
+        if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
+            self.solve_if_dirty()?;
+        }
+        let st = &mut self.state;
+        match self.model.as_mut().expect("model built") {
+            Model::QuasiStatic(m) => {
+                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(st.inputs.speed) * h);
+            }
+            Model::Dynamic { dynamic, .. } => {
+                let ds = st.dynamic.as_mut().expect("dynamic state initialised");
+                dynamic.advance(ds, &st.inputs, t + h)?;
+                st.cage_angle = wrap_angle(dynamic.cage_angle(ds));
+            }
+        }
+        st.time = t + h;
+        st.dirty = true;
         self.solve_if_dirty()
     }
 
@@ -166,14 +186,14 @@ impl Simulation {
     fn ensure_model(&mut self) -> Result<(), ModelError> {
         if self.model.is_none() {
             self.state.params.validate(&self.bearing)?;
-            if self.state.params.fidelity == Fidelity::Dynamic {
-                return Err(ModelError::InvalidParameter {
-                    name: "fidelity".into(),
-                    message: "the dynamic model (fidelity = 1) is not available in this build yet".into(),
-                });
-            }
-            let qs = QuasiStatic::new(&self.bearing, &self.state.params)?;
-            self.model = Some(Model::QuasiStatic(Box::new(qs)));
+            let qs = Box::new(QuasiStatic::new(&self.bearing, &self.state.params)?);
+            self.model = Some(match self.state.params.fidelity {
+                Fidelity::QuasiStatic => Model::QuasiStatic(qs),
+                Fidelity::Dynamic => Model::Dynamic {
+                    qs,
+                    dynamic: Box::new(Dynamic::new(&self.bearing, &self.state.params)?),
+                },
+            });
         }
         Ok(())
     }
@@ -187,11 +207,24 @@ impl Simulation {
         let z = self.bearing.roller_count;
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
-            Model::QuasiStatic(m) => m.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?,
+            Model::QuasiStatic(m) => {
+                let report = m.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
+                for j in 0..z {
+                    st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
+                }
+                report
+            }
+            Model::Dynamic { qs, dynamic } => {
+                let mut report = st.report;
+                if st.dynamic.is_none() {
+                    // Start from the quasi-static solution (seated rollers, epicyclic speeds).
+                    report = qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
+                    st.dynamic = Some(dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time));
+                }
+                dynamic.write_outputs(st.dynamic.as_ref().expect("dynamic state"), &st.inputs, &mut st.outputs);
+                report
+            }
         };
-        for j in 0..z {
-            st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
-        }
         st.report = report;
         st.dirty = false;
         Ok(report)
@@ -199,6 +232,7 @@ impl Simulation {
 
     fn parameter_changed(&mut self) {
         self.model = None;
+        self.state.dynamic = None;
         self.state.warm_start.clear();
         self.state.dirty = true;
     }

@@ -45,16 +45,38 @@ pub fn film_point(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_e: f64, r_s: 
 
 /// Roelands viscosity at pressure `p` (z0 = 0.4), as written in MODEL.md section 4.
 pub fn roelands_viscosity(eta0: f64, p: f64) -> f64 {
+    roelands_viscosity_with(eta0, fm::ln(eta0) + 9.67, p)
+}
+
+/// [`roelands_viscosity`] with `ln_eta0_967` = ln(eta0) + 9.67 precomputed.
+#[inline]
+pub fn roelands_viscosity_with(eta0: f64, ln_eta0_967: f64, p: f64) -> f64 {
     const Z0: f64 = 0.4;
     let p = p.max(0.0);
-    let expo = (eta0.ln() + 9.67) * (-1.0 + (1.0 + 5.1e-9 * p).powf(Z0));
-    eta0 * expo.min(60.0).exp()
+    let expo = ln_eta0_967 * (-1.0 + fm::powf(1.0 + 5.1e-9 * p, Z0));
+    eta0 * fm::exp(expo.min(60.0))
 }
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
 pub fn boundary_mu(slide_roll: f64) -> f64 {
     let s = slide_roll.abs();
-    (-0.1 + 22.28 * s) * (-181.46 * s).exp() + 0.1
+    (-0.1 + 22.28 * s) * fm::exp(-181.46 * s) + 0.1
+}
+
+/// Film thickness from precomputed logarithms: the Hamrock line-contact film is
+/// h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) with ln_c = ln(2.922 (eta0/E')^0.692 (alpha E')^0.470 E'^0.166 R^0.474),
+/// which [`film_line_log_constant`] gives per slice (same value as [`film_line`]).
+#[inline]
+pub fn film_line_fast(ln_c: f64, u_e: f64, w: f64) -> f64 {
+    if u_e <= 0.0 || w <= 0.0 {
+        return 0.0;
+    }
+    fm::exp(ln_c + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w))
+}
+
+/// The constant of [`film_line_fast`] for one slice.
+pub fn film_line_log_constant(eta0: f64, alpha: f64, e_prime: f64, r_bar: f64) -> f64 {
+    (2.922_f64).ln() + 0.692 * (eta0 / e_prime).ln() + 0.470 * (alpha * e_prime).ln() + 0.166 * e_prime.ln() + 0.474 * r_bar.ln()
 }
 
 /// Limiting shear stress coefficient: tau_L = LIMITING_SHEAR * p.
@@ -66,15 +88,28 @@ pub const EYRING_STRESS: f64 = 5.0e6;
 /// over the mean Hertz pressure, smoothly capped at the limiting shear stress.
 /// `v_s` sliding speed, `h` film thickness, `p_mean` mean contact pressure.
 pub fn full_film_mu(eta0: f64, v_s: f64, h: f64, p_mean: f64) -> f64 {
+    full_film_mu_with(eta0, fm::ln(eta0) + 9.67, v_s, h, p_mean)
+}
+
+/// [`full_film_mu`] with ln(eta0) + 9.67 precomputed.
+#[inline]
+pub fn full_film_mu_with(eta0: f64, ln_eta0_967: f64, v_s: f64, h: f64, p_mean: f64) -> f64 {
     if p_mean <= 0.0 || v_s == 0.0 {
         return 0.0;
     }
     let h = h.max(1e-9);
-    let eta = roelands_viscosity(eta0, p_mean);
-    let tau_e = EYRING_STRESS * (eta * v_s.abs() / (h * EYRING_STRESS)).asinh();
+    let eta = roelands_viscosity_with(eta0, ln_eta0_967, p_mean);
+    let x = eta * v_s.abs() / (h * EYRING_STRESS);
+    // asinh x = ln(x + sqrt(x^2 + 1)); for small x the series keeps full precision
+    let asinh = if x < 1e-4 {
+        x * (1.0 - x * x / 6.0)
+    } else {
+        fm::ln(x + (x * x + 1.0).sqrt())
+    };
+    let tau_e = EYRING_STRESS * asinh;
     let tau_l = LIMITING_SHEAR * p_mean;
     // smooth minimum of the Eyring stress and the limiting shear stress
-    let tau = tau_e * tau_l / (tau_e.powi(4) + tau_l.powi(4)).powf(0.25);
+    let tau = tau_e * tau_l / (tau_e.powi(4) + tau_l.powi(4)).sqrt().sqrt();
     v_s.signum() * tau / p_mean
 }
 
@@ -197,6 +232,17 @@ mod tests {
             * 1000.0_f64.powf(-0.073)
             * (1.0 - (-1.23 * (0.15_f64 / 0.2).powf(2.0 / 3.0)).exp());
         assert!((hp - hand).abs() < 1e-12 * hand);
+    }
+
+    #[test]
+    fn fast_film_equals_the_hamrock_formula() {
+        let (eta0, alpha, e, r) = (0.033, 1.28e-8, 2.18e11, 0.012);
+        let c = film_line_log_constant(eta0, alpha, e, r);
+        for (u, w) in [(16.0, 3e5), (0.01, 1e3), (40.0, 1e7)] {
+            let a = film_line_fast(c, u, w);
+            let b = film_line(eta0, alpha, e, u, r, w);
+            assert!((a - b).abs() < 1e-12 * b, "{a} {b}");
+        }
     }
 
     #[test]

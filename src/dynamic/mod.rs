@@ -1,0 +1,340 @@
+//! Dynamic bearing model, fidelity 1 (MODEL.md section 5) [W25, after Gupta 1984].
+//!
+//! Bodies and states (SI):
+//! - cone: 3 translations (x, y, z) and their velocities; its spin `speed` about its own
+//!   axis and its misalignment (`xi`, `zeta`, rotations about y and z through the origin)
+//!   are imposed. In displacement preload x follows the input `axialDisplacement`.
+//! - cage: radial translations (y, z), rotation about the bearing axis, their rates (the
+//!   axial cage position is held by the roller ends); or, with `cage.dynamic` = false, a
+//!   kinematic cage centred on the axis at the mean orbit of the rollers.
+//! - each roller: centre of mass in cylindrical coordinates (axial x, radial offset dr from
+//!   the pitch radius, azimuth psi) with rates; attitude as tilt theta (rotation of the axis
+//!   in its axial plane, positive outwards) and skew phi (rotation about the in-plane normal
+//!   m); angular velocity in the roller's azimuth frame (e_x, e_r, e_t). The spin angle
+//!   itself does not enter (axisymmetric roller).
+//!
+//! Equations: translation m (x'', r'' - r psi'^2, r psi'' + 2 r' psi') = F (centrifugal and
+//! Coriolis terms of the cylindrical frame); rotation from Euler's equations of the
+//! axisymmetric roller in vector form, dH/dt = M with H = I_a (w.a) a + I_t (w - (w.a) a),
+//! which gives w' = (M.a / I_a) a + [M - (M.a) a - (I_a - I_t)(w.a)(w x a)] / I_t (the last
+//! term is the gyroscopic coupling of spin and orbit), written in the rotating azimuth frame.
+//!
+//! Contacts (`contacts.rs`): sliced roller/raceway contacts with the full 3-D position and
+//! attitude of every slice (tilt and skew move the slice contact points), the spherical
+//! roller end on the conical rib (Hertz point contact), cage pocket (hydrodynamic or
+//! Hertz with restitution damping), cage on its guiding land (short journal bearing or
+//! Hertz); traction from film thickness, film ratio and the boundary / mixed / full-film law
+//! [W25], or dry Coulomb. Normal contacts carry a viscous damping of ratio `contact.damping`.
+//!
+//! The state starts from the quasi-static solution (seated rollers, epicyclic speeds), so no
+//! start-up transient is simulated unless `startFromRest` asks for it. Integration:
+//! `integrator.rs` (adaptive Dormand-Prince 5(4) honouring `tolerance`).
+
+mod contacts;
+pub mod integrator;
+
+use crate::bearing::Bearing;
+use crate::geometry::Geometry;
+use crate::model::{Inputs, ModelError, Outputs, Parameters, Preload};
+use crate::quasi_static::QuasiStatic;
+use integrator::{Counters, Dopri5, Failure};
+use nalgebra::{Matrix3, Vector3};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+type V3 = Vector3<f64>;
+
+/// Offsets in the state vector.
+const CONE: usize = 0; // x y z vx vy vz
+const CAGE: usize = 6; // y z psi vy vz psi'
+const ROLLERS: usize = 12;
+/// States per roller: x dr psi x' dr' psi' tilt skew w_x w_r w_t.
+pub const PER_ROLLER: usize = 11;
+
+/// The evolving state of the dynamic model (serialised with the FMU state).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DynamicState {
+    pub y: Vec<f64>,
+    pub t: f64,
+    /// Next proposed integrator step.
+    pub h: f64,
+    pub counters: Counters,
+    /// Derivative at (t, y) from the last accepted step and the inputs it was computed with.
+    pub fsal: Vec<f64>,
+    pub fsal_inputs: Option<Inputs>,
+}
+
+/// Per-roller results of one evaluation, for the outputs.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RollerRecord {
+    pub qi: f64,
+    pub qo: f64,
+    pub qf: f64,
+    pub qc: f64,
+    /// Moments about the roller's geometric centre from cone, cup, flange contacts.
+    pub m_cone: V3,
+    pub m_cup: V3,
+    pub m_flange: V3,
+    /// Tilt axis and skew axis of the roller now.
+    pub tilt_axis: V3,
+    pub skew_axis: V3,
+}
+
+/// Totals of one evaluation.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Totals {
+    /// Force and moment (about the origin) of the rollers on the cone.
+    pub f_cone: V3,
+    pub m_cone: V3,
+    /// Force and moment about the bearing axis of the rollers and land on the cage.
+    pub f_cage: V3,
+    pub m_cage: f64,
+    /// Dissipated power by contact group (W).
+    pub p_raceway: f64,
+    pub p_flange: f64,
+    pub p_cage: f64,
+    /// Moment of raceway and flange forces on the cone about its own axis.
+    pub t_cone_raceway: f64,
+    pub t_cone_flange: f64,
+    pub extrapolated: bool,
+}
+
+/// Constants of the dynamic model for one bearing and parameter set.
+#[derive(Debug, Clone)]
+pub struct Dynamic {
+    pub(crate) g: Geometry,
+    pub(crate) p: Parameters,
+    pub(crate) c: contacts::Constants,
+    ig: Dopri5,
+    records: Vec<RollerRecord>,
+}
+
+impl Dynamic {
+    pub fn new(bearing: &Bearing, params: &Parameters) -> Result<Dynamic, ModelError> {
+        let g = Geometry::new(bearing, params);
+        let c = contacts::Constants::new(bearing, params, &g);
+        let n = ROLLERS + PER_ROLLER * g.z;
+        let (atol, rtol) = tolerances(&g, &c, params, bearing.speed.abs().max(100.0), n);
+        let ig = Dopri5::new(n, atol, rtol, params.max_step);
+        Ok(Dynamic {
+            records: vec![RollerRecord::default(); g.z],
+            g,
+            p: params.clone(),
+            c,
+            ig,
+        })
+    }
+
+    pub fn n_states(&self) -> usize {
+        ROLLERS + PER_ROLLER * self.g.z
+    }
+
+    /// Initial state from a converged quasi-static solution `x` (cone dx, dy, dz; per roller
+    /// a, rho, theta L_s) at cage angle `cage_angle`, with epicyclic speeds; or at rest.
+    pub fn initial_state(&self, qs: &QuasiStatic, x: &[f64], inputs: &Inputs, cage_angle: f64, t0: f64) -> DynamicState {
+        let g = &self.g;
+        let z = g.z;
+        let mut y = vec![0.0; self.n_states()];
+        let rest = self.p.start_from_rest;
+        let speed = if rest { 0.0 } else { inputs.speed };
+        let wc = qs.cage_speed(speed);
+        let w_spin = qs.spin_ratio() * speed;
+        y[CONE] = x[0];
+        y[CONE + 1] = x[1];
+        y[CONE + 2] = x[2];
+        y[CAGE + 2] = cage_angle;
+        y[CAGE + 5] = wc;
+        let ls = 0.5 * g.length;
+        let axis0 = V3::new(g.axis[0], g.axis[1], 0.0); // (x, r, t) components
+        for j in 0..z {
+            let o = ROLLERS + PER_ROLLER * j;
+            let (a, rho, tilt) = (x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j] / ls);
+            let psi = cage_angle + TAU * j as f64 / z as f64;
+            // attitude: nominal axis tilted by theta in the axial plane
+            let beta = g.axis_angle - tilt;
+            let axis = V3::new(beta.cos(), -beta.sin(), 0.0);
+            // the state point is the centre of mass, cm_offset along the axis from the centre
+            y[o] = g.center[0] + a + g.cm_offset * axis[0];
+            y[o + 1] = rho + g.cm_offset * axis[1];
+            y[o + 2] = psi;
+            y[o + 5] = wc;
+            y[o + 6] = tilt;
+            y[o + 7] = 0.0;
+            // inertial angular velocity: orbit about x plus spin about the axis (x, r, t comps)
+            let w = V3::new(wc, 0.0, 0.0) + axis * w_spin;
+            y[o + 8] = w[0];
+            y[o + 9] = w[1];
+            y[o + 10] = w[2];
+            let _ = axis0;
+        }
+        DynamicState {
+            y,
+            t: t0,
+            h: 0.0,
+            counters: Counters::default(),
+            fsal: Vec::new(),
+            fsal_inputs: None,
+        }
+    }
+
+    /// Integrate from `state.t` to `t_end` with `inputs` held.
+    pub fn advance(&mut self, state: &mut DynamicState, inputs: &Inputs, t_end: f64) -> Result<(), ModelError> {
+        if state.fsal_inputs.as_ref() != Some(inputs) {
+            // the right-hand side changed: the stored derivative no longer applies
+            state.fsal.clear();
+            state.fsal_inputs = Some(*inputs);
+        }
+        if self.p.preload == Preload::Displacement && state.y[CONE] != inputs.axial_displacement {
+            state.y[CONE] = inputs.axial_displacement;
+            state.y[CONE + 3] = 0.0;
+            state.fsal.clear();
+        }
+        let this = &mut *self;
+        let (g, p, c, records, inp) = (&this.g, &this.p, &this.c, &mut this.records, inputs);
+        let mut t = state.t;
+        let result = this.ig.integrate(
+            |_t, y, dy| {
+                let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
+            },
+            &mut t,
+            &mut state.y,
+            t_end,
+            &mut state.h,
+            &mut state.counters,
+            &mut state.fsal,
+        );
+        state.t = t;
+        result.map_err(|f| {
+            state.fsal.clear();
+            let message = match f {
+                Failure::StepTooSmall { t, h } => format!(
+                    "the step size fell to {h:.3e} s at t = {t:.9} s without meeting the tolerance {:.1e}; the contacts are too stiff or the state left the model's range",
+                    self.p.tolerance
+                ),
+                Failure::NotFinite { t } => format!("the state became non-finite at t = {t:.9} s"),
+                Failure::TooManySteps { t, steps } => format!("more than {steps} steps in one communication interval (t = {t:.9} s)"),
+            };
+            ModelError::IntegratorFailure { message }
+        })
+    }
+
+    /// Fill `out` from `state`.
+    pub fn write_outputs(&mut self, state: &DynamicState, inputs: &Inputs, out: &mut Outputs) {
+        let g = &self.g;
+        let totals = contacts::evaluate(g, &self.p, &self.c, inputs, &state.y, None, &mut self.records);
+        let y = &state.y;
+        let z = g.z;
+        for j in 0..z {
+            let o = ROLLERS + PER_ROLLER * j;
+            let r = &self.records[j];
+            out.tilt[j] = y[o + 6];
+            out.skew[j] = y[o + 7];
+            out.azimuth[j] = y[o + 2].rem_euclid(TAU);
+            out.qi[j] = r.qi;
+            out.qo[j] = r.qo;
+            out.qf[j] = r.qf;
+            out.qc[j] = r.qc;
+            out.nit[j] = r.m_cone.dot(&r.tilt_axis);
+            out.not[j] = r.m_cup.dot(&r.tilt_axis);
+            out.nft[j] = r.m_flange.dot(&r.tilt_axis);
+            out.nis[j] = r.m_cone.dot(&r.skew_axis);
+            out.nos[j] = r.m_cup.dot(&r.skew_axis);
+            out.nfs[j] = r.m_flange.dot(&r.skew_axis);
+        }
+        out.cone_x = if self.p.preload == Preload::Displacement {
+            inputs.axial_displacement
+        } else {
+            y[CONE]
+        };
+        out.cone_y = y[CONE + 1];
+        out.cone_z = y[CONE + 2];
+        out.reaction_fx = if g.axial { -totals.f_cone[0] } else { 0.0 };
+        out.reaction_my = -totals.m_cone[1];
+        out.reaction_mz = -totals.m_cone[2];
+        out.cage_speed = contacts::cage_speed(g, &self.p, y);
+        // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
+        out.friction_torque = -(totals.t_cone_raceway + totals.t_cone_flange);
+        let w = inputs.speed;
+        let per_speed = if w.abs() > 1e-9 { 1.0 / w } else { 0.0 };
+        out.friction_torque_raceway = totals.p_raceway * per_speed;
+        out.friction_torque_flange = totals.p_flange * per_speed;
+        out.friction_torque_cage = totals.p_cage * per_speed;
+        out.power_loss = totals.p_raceway + totals.p_flange + totals.p_cage;
+        out.solver_iterations = 0;
+        out.solver_residual = 0.0;
+        out.integrator_steps = state.counters.steps.min(i32::MAX as u64) as i32;
+        out.integrator_rhs = state.counters.rhs.min(i32::MAX as u64) as i32;
+        out.integrator_rejected = state.counters.rejected.min(i32::MAX as u64) as i32;
+        out.summarize();
+    }
+
+    /// Cage angle now (roller 1's pocket).
+    pub fn cage_angle(&self, state: &DynamicState) -> f64 {
+        contacts::cage_angle(&self.g, &self.p, &state.y)
+    }
+
+    /// Right-hand side at `state` (for tests and benchmarks).
+    pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
+        contacts::evaluate(&self.g, &self.p, &self.c, inputs, y, Some(dy), &mut self.records);
+    }
+}
+
+/// Absolute and relative tolerances per state component: positions to `tol` of a 10 um
+/// reference displacement, angles to the angle that moves a roller end by that much, speeds
+/// relative to the orbital surface speed and the spin.
+fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let tol = p.tolerance;
+    let l_ref = 1e-5;
+    let r_p = g.center[1];
+    let wc_ref = c.cage_ratio.abs() * speed_ref;
+    let v_ref = (wc_ref * r_p).max(0.1);
+    let spin_ref = (c.spin_ratio.abs() * speed_ref).max(10.0);
+    let ang_ref = l_ref / (0.5 * g.length);
+    let mut atol = vec![0.0; n];
+    let mut rtol = vec![0.0; n];
+    let mut set = |i: usize, a: f64, r: f64| {
+        atol[i] = tol * a;
+        rtol[i] = r * tol;
+    };
+    for k in 0..3 {
+        set(CONE + k, l_ref, 0.0);
+        set(CONE + 3 + k, l_ref * 1e3, 0.0);
+    }
+    set(CAGE, l_ref, 0.0);
+    set(CAGE + 1, l_ref, 0.0);
+    set(CAGE + 2, l_ref / r_p, 0.0);
+    set(CAGE + 3, v_ref * 1e-3, 0.0);
+    set(CAGE + 4, v_ref * 1e-3, 0.0);
+    set(CAGE + 5, wc_ref.max(1.0) * 1e-3, 1.0);
+    for j in 0..g.z {
+        let o = ROLLERS + PER_ROLLER * j;
+        set(o, l_ref, 0.0);
+        set(o + 1, l_ref, 0.0);
+        set(o + 2, l_ref / r_p, 0.0);
+        set(o + 3, v_ref * 1e-3, 0.0);
+        set(o + 4, v_ref * 1e-3, 0.0);
+        set(o + 5, wc_ref.max(1.0) * 1e-3, 1.0);
+        set(o + 6, ang_ref, 0.0);
+        set(o + 7, ang_ref, 0.0);
+        for k in 8..11 {
+            set(o + k, spin_ref * 1e-3, 1.0);
+        }
+    }
+    (atol, rtol)
+}
+
+/// Rotation matrix of the small rotation vector (0, xi, zeta) (Rodrigues), the cone's
+/// misalignment about the origin.
+pub(crate) fn cone_rotation(xi: f64, zeta: f64) -> Matrix3<f64> {
+    let v = V3::new(0.0, xi, zeta);
+    let angle = v.norm();
+    if angle == 0.0 {
+        return Matrix3::identity();
+    }
+    let k = v / angle;
+    let kx = Matrix3::new(0.0, -k[2], k[1], k[2], 0.0, -k[0], -k[1], k[0], 0.0);
+    Matrix3::identity() + kx * angle.sin() + kx * kx * (1.0 - angle.cos())
+}
+
+#[cfg(test)]
+mod tests;

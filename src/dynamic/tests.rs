@@ -1,0 +1,408 @@
+//! Tests of the dynamic model: start from the quasi-static state, energy balance, symmetry,
+//! agreement with the quasi-static loads at low speed, convergence under refinement, the
+//! study's qualitative trends, and exact state round trips. Short spans and 10 slices keep
+//! them to a few seconds each in release builds.
+
+use crate::bearing::Bearing;
+use crate::model::Outputs;
+use crate::simulation::Simulation;
+use crate::variables as var;
+
+const RPM: f64 = std::f64::consts::PI / 30.0;
+
+fn sim(name: &str, slices: i32, setup: &[(u32, f64)]) -> Simulation {
+    let mut s = Simulation::new(Bearing::preset(name).unwrap());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.set_integer(var::SLICES, slices).unwrap();
+    for (vr, v) in setup {
+        s.set_real(*vr, *v).unwrap();
+    }
+    s
+}
+
+/// Run `steps` communication steps of `h`; call `each` after every step.
+fn run(s: &mut Simulation, h: f64, steps: usize, mut each: impl FnMut(usize, &Outputs)) {
+    s.initialize(0.0).unwrap();
+    for k in 0..steps {
+        s.do_step(k as f64 * h, h).unwrap_or_else(|e| panic!("step {k}: {e}"));
+        each(k, s.last_outputs());
+    }
+}
+
+/// Time averages of a few outputs over the second half of a run.
+#[derive(Debug, Default, Clone)]
+struct Averages {
+    torque_power: f64,
+    power: f64,
+    skew_mean: f64,
+    tilt_max: f64,
+    qo_max: f64,
+    cone_x: f64,
+    per_roller_skew: Vec<f64>,
+    per_roller_tilt: Vec<f64>,
+    per_roller_qo: Vec<f64>,
+}
+
+fn averages(s: &mut Simulation, h: f64, steps: usize) -> Averages {
+    let z = s.n_rollers();
+    let speed = s.inputs().speed;
+    let mut a = Averages {
+        per_roller_skew: vec![0.0; z],
+        per_roller_tilt: vec![0.0; z],
+        per_roller_qo: vec![0.0; z],
+        ..Default::default()
+    };
+    let mut n = 0.0;
+    run(s, h, steps, |k, o| {
+        if k < steps / 2 {
+            return;
+        }
+        n += 1.0;
+        a.torque_power += o.friction_torque * speed;
+        a.power += o.power_loss;
+        a.skew_mean += o.skew_mean;
+        a.tilt_max += o.tilt_max;
+        a.qo_max += o.qo_max;
+        a.cone_x += o.cone_x;
+        for j in 0..z {
+            a.per_roller_skew[j] += o.skew[j];
+            a.per_roller_tilt[j] += o.tilt[j];
+            a.per_roller_qo[j] += o.qo[j];
+        }
+    });
+    for v in [
+        &mut a.torque_power,
+        &mut a.power,
+        &mut a.skew_mean,
+        &mut a.tilt_max,
+        &mut a.qo_max,
+        &mut a.cone_x,
+    ] {
+        *v /= n;
+    }
+    for v in a
+        .per_roller_skew
+        .iter_mut()
+        .chain(a.per_roller_tilt.iter_mut())
+        .chain(a.per_roller_qo.iter_mut())
+    {
+        *v /= n;
+    }
+    a
+}
+
+fn quasi_static_outputs(name: &str, slices: i32, setup: &[(u32, f64)]) -> Outputs {
+    let mut s = Simulation::new(Bearing::preset(name).unwrap());
+    s.set_integer(var::SLICES, slices).unwrap();
+    for (vr, v) in setup {
+        s.set_real(*vr, *v).unwrap();
+    }
+    s.initialize(0.0).unwrap();
+    s.last_outputs().clone()
+}
+
+#[test]
+fn starts_seated_from_the_quasi_static_solution() {
+    // The exact 3-D contact kinematics reproduce the linearised quasi-static loads at t = 0
+    // and keep them: no start-up transient.
+    let setup = [(var::FY, 8_000.0), (var::XI, 0.004_f64.to_radians())];
+    let qs = quasi_static_outputs("TRB130x230", 10, &setup);
+    let mut s = sim("TRB130x230", 10, &setup);
+    s.initialize(0.0).unwrap();
+    let d = s.last_outputs().clone();
+    for j in 0..qs.qo.len() {
+        assert!(
+            (d.qo[j] - qs.qo[j]).abs() < 2e-3 * qs.qo_max,
+            "roller {j}: Qo {} vs {}",
+            d.qo[j],
+            qs.qo[j]
+        );
+        assert!(
+            (d.qi[j] - qs.qi[j]).abs() < 2e-3 * qs.qi_max,
+            "roller {j}: Qi {} vs {}",
+            d.qi[j],
+            qs.qi[j]
+        );
+        assert!(
+            (d.qf[j] - qs.qf[j]).abs() < 2e-3 * qs.qf_max,
+            "roller {j}: Qf {} vs {}",
+            d.qf[j],
+            qs.qf[j]
+        );
+    }
+    assert!((d.cage_speed - qs.cage_speed).abs() < 1e-12 * qs.cage_speed);
+    for k in 0..5 {
+        s.do_step(k as f64 * 1e-4, 1e-4).unwrap();
+    }
+    let later = s.last_outputs();
+    assert!(
+        (later.qo_max - qs.qo_max).abs() < 0.01 * qs.qo_max,
+        "{} vs {}",
+        later.qo_max,
+        qs.qo_max
+    );
+    assert!(later.all_finite());
+}
+
+#[test]
+fn torque_times_speed_equals_power_loss_on_time_average() {
+    let mut s = sim("TRB130x230", 10, &[]);
+    let a = averages(&mut s, 1e-4, 200);
+    let err = (a.torque_power - a.power).abs() / a.power;
+    assert!(
+        err < 0.03,
+        "torque x speed {:.2} W vs power loss {:.2} W ({:.2} %)",
+        a.torque_power,
+        a.power,
+        100.0 * err
+    );
+    assert!(a.power > 0.0);
+}
+
+#[test]
+fn aligned_pure_axial_load_gives_every_roller_the_same_statistics() {
+    let mut s = sim("TRB130x230", 10, &[]);
+    let a = averages(&mut s, 1e-4, 120);
+    let mean_skew = a.per_roller_skew.iter().sum::<f64>() / a.per_roller_skew.len() as f64;
+    for j in 0..a.per_roller_skew.len() {
+        assert!(
+            (a.per_roller_skew[j] - mean_skew).abs() < 0.05 * mean_skew.abs(),
+            "roller {j}: skew {} vs mean {mean_skew}",
+            a.per_roller_skew[j]
+        );
+        assert!((a.per_roller_qo[j] - a.per_roller_qo[0]).abs() < 1e-3 * a.per_roller_qo[0]);
+        assert!((a.per_roller_tilt[j] - a.per_roller_tilt[0]).abs() < 0.02 * a.per_roller_tilt[0].abs());
+    }
+}
+
+#[test]
+fn low_speed_contact_loads_agree_with_the_quasi_static_model() {
+    // 100 rpm, combined load: inertia and traction are small, the time-averaged cone
+    // displacement and largest roller load match the quasi-static solution within 1 %.
+    let setup = [(var::SPEED, 100.0 * RPM), (var::FY, 10_000.0)];
+    let qs = quasi_static_outputs("TRB130x230", 10, &setup);
+    let mut s = sim("TRB130x230", 10, &setup);
+    let a = averages(&mut s, 2e-4, 100);
+    assert!(
+        (a.cone_x - qs.cone_x).abs() < 0.01 * qs.cone_x,
+        "cone.x {} vs {}",
+        a.cone_x,
+        qs.cone_x
+    );
+    assert!(
+        (a.qo_max - qs.qo_max).abs() < 0.01 * qs.qo_max,
+        "Qo.max {} vs {}",
+        a.qo_max,
+        qs.qo_max
+    );
+}
+
+#[test]
+fn refining_tolerance_and_slices_changes_the_results_little() {
+    let base = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 100);
+    let tight = {
+        let mut s = sim("TRB130x230", 10, &[(var::TOLERANCE, 0.5e-6)]);
+        averages(&mut s, 1e-4, 100)
+    };
+    let fine = averages(&mut sim("TRB130x230", 20, &[]), 1e-4, 100);
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    // halving the tolerance: torque and skew within 1 %
+    assert!(
+        rel(tight.torque_power, base.torque_power) < 0.01,
+        "{} vs {}",
+        tight.torque_power,
+        base.torque_power
+    );
+    assert!(
+        rel(tight.skew_mean, base.skew_mean) < 0.01,
+        "{} vs {}",
+        tight.skew_mean,
+        base.skew_mean
+    );
+    // 10 -> 20 slices: loads within 0.5 %, torque and skew within 5 %
+    assert!(rel(fine.qo_max, base.qo_max) < 0.005, "{} vs {}", fine.qo_max, base.qo_max);
+    assert!(
+        rel(fine.torque_power, base.torque_power) < 0.05,
+        "{} vs {}",
+        fine.torque_power,
+        base.torque_power
+    );
+    assert!(
+        rel(fine.skew_mean, base.skew_mean) < 0.05,
+        "{} vs {}",
+        fine.skew_mean,
+        base.skew_mean
+    );
+}
+
+/// The [W25] bearing made kinematically consistent (one apex for cone, cup and roller axis).
+fn apex_consistent_bearing() -> Bearing {
+    Bearing::from_json(include_str!("../../tests/fixtures/TRB130x230-apex.json")).unwrap()
+}
+
+#[test]
+fn tilt_is_far_below_skew_and_the_centrifugal_effect_acts_on_skew_the_gyroscopic_on_tilt() {
+    // [W25]: tilt orders of magnitude below skew; centrifugal effect mainly affects skew,
+    // gyroscopic effect mainly tilt.
+    let all = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 100);
+    assert!(
+        all.tilt_max < 0.1 * all.skew_mean.abs(),
+        "tilt {} vs skew {}",
+        all.tilt_max,
+        all.skew_mean
+    );
+    let mut s = sim("TRB130x230", 10, &[]);
+    s.set_boolean(var::CENTRIFUGAL, false).unwrap();
+    let no_cf = averages(&mut s, 1e-4, 100);
+    let mut s = sim("TRB130x230", 10, &[]);
+    s.set_boolean(var::GYROSCOPIC, false).unwrap();
+    let no_gyro = averages(&mut s, 1e-4, 100);
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    // switching the centrifugal force off changes skew a lot and tilt little ...
+    assert!(rel(no_cf.skew_mean, all.skew_mean) > 5.0 * rel(no_cf.tilt_max, all.tilt_max));
+    // ... switching the gyroscopic moment off changes tilt more than skew.
+    assert!(rel(no_gyro.tilt_max, all.tilt_max) > rel(no_gyro.skew_mean, all.skew_mean));
+}
+
+#[test]
+fn skew_grows_with_speed_in_a_kinematically_consistent_bearing() {
+    // With one apex for cone, cup and roller axis there is no geometric slip, and the skew
+    // grows with speed as [W25] reports. (With the published TRB130x230 data the three apexes
+    // differ and the geometric slip makes skew fall above about 1500 rpm; see
+    // docs/results-dynamic.md.)
+    let b = apex_consistent_bearing();
+    let mut last = 0.0;
+    for rpm in [500.0, 2000.0, 4500.0] {
+        let mut s = Simulation::new(b.clone());
+        s.set_integer(var::FIDELITY, 1).unwrap();
+        s.set_integer(var::SLICES, 10).unwrap();
+        s.set_real(var::SPEED, rpm * RPM).unwrap();
+        let a = averages(&mut s, 1e-4, 80);
+        assert!(a.skew_mean.abs() > last, "{rpm} rpm: |skew| {} not above {last}", a.skew_mean.abs());
+        last = a.skew_mean.abs();
+    }
+}
+
+#[test]
+fn shaft_deflection_raises_the_tilt_amplitude() {
+    let aligned = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 60);
+    let deflected = averages(&mut sim("TRB130x230", 10, &[(var::XI, 0.006_f64.to_radians())]), 1e-4, 60);
+    assert!(
+        deflected.tilt_max > 1.5 * aligned.tilt_max,
+        "{} vs {}",
+        deflected.tilt_max,
+        aligned.tilt_max
+    );
+}
+
+#[test]
+fn serialized_state_resumes_bit_for_bit() {
+    let mut a = sim("TRB130x230", 10, &[(var::FY, 5_000.0)]);
+    a.initialize(0.0).unwrap();
+    for k in 0..5 {
+        a.do_step(k as f64 * 1e-4, 1e-4).unwrap();
+    }
+    let bytes = a.serialize_state();
+    let mut b = sim("TRB130x230", 10, &[(var::FY, 5_000.0)]);
+    b.deserialize_state(&bytes).unwrap();
+    for k in 5..10 {
+        a.do_step(k as f64 * 1e-4, 1e-4).unwrap();
+        b.do_step(k as f64 * 1e-4, 1e-4).unwrap();
+    }
+    assert_eq!(a.last_outputs(), b.last_outputs());
+    // and a clone (the FMU's in-memory state) too
+    let mut c = a.clone();
+    a.do_step(1e-3, 1e-4).unwrap();
+    c.do_step(1e-3, 1e-4).unwrap();
+    assert_eq!(a.last_outputs(), c.last_outputs());
+}
+
+#[test]
+#[ignore]
+fn explore() {
+    let mut s = sim("TRB130x230", 20, &[]);
+    if let Ok(v) = std::env::var("SLICES") {
+        s.set_integer(var::SLICES, v.parse().unwrap()).unwrap();
+    }
+    let steps: usize = std::env::var("STEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(50);
+    let every: usize = std::env::var("EVERY").ok().and_then(|v| v.parse().ok()).unwrap_or(5);
+    let h = 1e-4;
+    let t0 = std::time::Instant::now();
+    run(&mut s, h, steps, |k, o| {
+        if k % every == every - 1 {
+            println!(
+                "t={:.4}: Qi {:.1} Qo {:.1} Qf {:.1} tilt {:.3e} skew {:.3e}/{:.3e} T {:.3} P {:.1} cage {:.3} steps {} rhs {}",
+                (k + 1) as f64 * h,
+                o.qi_max,
+                o.qo_max,
+                o.qf_max,
+                o.tilt_max,
+                o.skew_max,
+                o.skew_mean,
+                o.friction_torque,
+                o.power_loss,
+                o.cage_speed,
+                o.integrator_steps,
+                o.integrator_rhs
+            );
+        }
+    });
+    println!("wall {:?}", t0.elapsed());
+}
+
+#[test]
+#[ignore]
+fn explore_speed_sweep() {
+    for rpm in [500.0, 1500.0, 2500.0, 3500.0, 4500.0] {
+        let mut s = sim("TRB130x230", 10, &[(var::SPEED, rpm * RPM)]);
+        let z = s.n_rollers();
+        let (mut nis, mut nos, mut nfs, mut n, mut qc) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        let a = {
+            let mut acc = Averages::default();
+            let steps = 100;
+            let mut cnt = 0.0;
+            run(&mut s, 1e-4, steps, |k, o| {
+                if k < steps / 2 {
+                    return;
+                }
+                cnt += 1.0;
+                acc.skew_mean += o.skew_mean;
+                acc.tilt_max += o.tilt_max;
+                acc.power += o.power_loss;
+                nis += o.nis.iter().sum::<f64>() / z as f64;
+                nos += o.nos.iter().sum::<f64>() / z as f64;
+                nfs += o.nfs.iter().sum::<f64>() / z as f64;
+                qc += o.qc.iter().sum::<f64>() / z as f64;
+                n += 1.0;
+            });
+            acc.skew_mean /= cnt;
+            acc.tilt_max /= cnt;
+            acc.power /= cnt;
+            acc
+        };
+        println!(
+            "{rpm} rpm: skew {:.3e} tilt {:.3e} P {:.1} | skew moments cone {:.4} cup {:.4} flange {:.4} | Qc {:.2}",
+            a.skew_mean,
+            a.tilt_max,
+            a.power,
+            nis / n,
+            nos / n,
+            nfs / n,
+            qc / n
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn explore_switches() {
+    for (label, cf, gy) in [("all", true, true), ("no centrifugal", false, true), ("no gyroscopic", true, false)] {
+        for rpm in [1500.0, 3500.0] {
+            let mut s = sim("TRB130x230", 10, &[(var::SPEED, rpm * RPM)]);
+            s.set_boolean(var::CENTRIFUGAL, cf).unwrap();
+            s.set_boolean(var::GYROSCOPIC, gy).unwrap();
+            let a = averages(&mut s, 1e-4, 100);
+            println!("{label:>15} {rpm} rpm: skew {:.3e} tilt {:.3e}", a.skew_mean, a.tilt_max);
+        }
+    }
+}
