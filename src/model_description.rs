@@ -36,6 +36,8 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
 const UNITS: &[(&str, [i32; 4], &[(&str, f64)])] = &[
     ("1", [0, 0, 0, 0], &[]),
     ("m", [0, 1, 0, 0], &[]),
+    ("kg", [1, 0, 0, 0], &[]),
+    ("s", [0, 0, 1, 0], &[]),
     ("N", [1, 1, -2, 0], &[]),
     ("N.m", [1, 2, -2, 0], &[]),
     ("W", [1, 2, -3, 0], &[]),
@@ -229,6 +231,21 @@ mod tests {
         }
         assert!(xml.contains(r#"name="roller[17].Nfs""#));
         assert!(!xml.contains(r#"name="roller[18].Nfs""#));
+    }
+
+    #[test]
+    fn every_unit_used_is_defined() {
+        let b = Bearing::default_preset();
+        let (xml, _) = generate(&b);
+        for v in variables::TABLE {
+            if let Some(u) = v.unit {
+                assert!(
+                    xml.contains(&format!(r#"<Unit name="{}">"#, xml_escape(u))),
+                    "unit {u} of {} is not defined",
+                    v.name
+                );
+            }
+        }
     }
 
     #[test]

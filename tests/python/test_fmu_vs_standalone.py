@@ -53,6 +53,21 @@ def _cases():
                 "zeta": {"time": [0.0, 0.04, 0.06], "values": [0.0, 0.0, 2e-5]},
             },
         ),
+        # The dynamic model (fidelity 1): radial load and deflection change during the run;
+        # integrator state (including its stored derivative) must evolve identically.
+        "TRB130x230-dynamic": lambda: {
+            "description": "test: [W25] case at fidelity 1 with a radial load ramp and a deflection step",
+            "bearing": "TRB130x230",
+            "parameters": {"fidelity": 1, "slices": 8},
+            "inputs": {
+                "speed": 366.51914291880917,
+                "Fx": 30000.0,
+                "Fy": {"time": [0.0, 0.001], "values": [0.0, 6000.0]},
+                "xi": {"time": [0.0, 0.0006, 0.0007], "values": [0.0, 0.0, 7e-5]},
+            },
+            "stop_time": 0.001,
+            "step": 0.0001,
+        },
         # The cylindrical lobed bearing, cage followed over a roller pitch.
         "CRB-TRILOBE-lobed": lambda: _with_tables(
             "y22_single_pressed.json", 0.00014, 2e-6,
