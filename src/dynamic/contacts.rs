@@ -62,8 +62,8 @@ pub(crate) struct Constants {
     damping: f64,
     e_prime: f64,
     eta0: f64,
-    /// ln(eta0) + 9.67 of the Roelands law.
-    ln_eta0_967: f64,
+    /// Roelands viscosity of the oil against pressure.
+    viscosity: tr::ViscosityTable,
     alpha: f64,
     sigma: f64,
     mu: f64,
@@ -170,7 +170,7 @@ impl Constants {
             damping: p.contact_damping,
             e_prime: g.e_prime,
             eta0: p.eta0,
-            ln_eta0_967: p.eta0.ln() + 9.67,
+            viscosity: tr::ViscosityTable::new(p.eta0),
             alpha: p.alpha,
             sigma: p.roughness,
             mu: p.mu,
@@ -250,15 +250,18 @@ fn raceway_traction(c: &Constants, q: f64, v_t: &V3, u_e: f64, r_bar: f64, ln_fi
         let w = q / c.slice_len;
         let h = tr::film_line_fast(ln_film, u_e, w);
         let lambda = if c.sigma > 0.0 { h / c.sigma } else { f64::INFINITY };
-        // the full-film law is not needed in the boundary regime
-        let mu_fl = if lambda >= 0.01 {
-            let b = (8.0 * w * r_bar / (PI * c.e_prime)).sqrt();
-            let p_mean = w / (2.0 * b);
-            tr::full_film_mu_with(c.eta0, c.ln_eta0_967, s * u_e, h, p_mean).abs()
-        } else {
-            0.0
+        // boundary / mixed / full film [W25]; each law only where it is used
+        let full_film = || {
+            let p_mean = (w * PI * c.e_prime / (32.0 * r_bar)).sqrt(); // w / (2 b), b the Hertz half-width
+            tr::full_film_mu_at_viscosity(c.viscosity.eta(p_mean), s * u_e, h, p_mean).abs()
         };
-        let mu = tr::traction_mu(lambda, s, mu_fl);
+        let mu = if lambda >= 1.5 {
+            full_film()
+        } else if lambda < 0.01 {
+            tr::boundary_mu(s)
+        } else {
+            tr::traction_mu(lambda, s, full_film())
+        };
         mu * q / (s * u_e)
     };
     (-v_t * coef, coef * vs * vs)
@@ -274,8 +277,8 @@ fn raceway_slice(
     line: &LineConst,
     k: usize,
     gap: impl Fn(&V3) -> f64,
-    centre: &V3,
-    axis: &V3,
+    centre_local: &V3,
+    axis_local: &V3,
     radius: f64,
     frame: &RingFrame,
     roller_point_velocity: impl Fn(&V3) -> V3,
@@ -283,8 +286,7 @@ fn raceway_slice(
 ) -> Option<(V3, V3, f64, f64, bool)> {
     let (law, reference, normal) = (&line.law, line.reference, line.normal);
     // slice centre and axis in the ring frame
-    let cl = frame.to_local(centre);
-    let al = frame.rotate_to_local(axis);
+    let (cl, al) = (*centre_local, *axis_local);
     let (er_c, _) = radial(&cl);
     // into the ring: minus its normal
     let g = -(V3::x() * normal[0] + er_c * normal[1]);
@@ -473,8 +475,11 @@ pub(crate) fn evaluate(
             -(c.half_clearance + lobe) * c.cos_o
         };
         let no_gap = |_: &V3| 0.0;
+        // the roller in the cone's frame (slice centres are affine in the station)
+        let (pos_c, a_c) = (cone.to_local(&pos), cone.rotate_to_local(&a));
         for k in 0..c.s_cm.len() {
             let ck = pos + a * c.s_cm[k];
+            let ck_c = pos_c + a_c * c.s_cm[k];
             let rad = c.radius[k] + dd - c.shrink[k];
             if let Some((fk, pk, q, pw, ext)) = raceway_slice(c, &c.cup, k, cup_gap, &ck, &a, rad, &cup, roller_point_velocity, psid) {
                 f += fk;
@@ -484,7 +489,7 @@ pub(crate) fn evaluate(
                 tot.p_raceway += pw;
                 tot.extrapolated |= ext;
             }
-            if let Some((fk, pk, q, pw, ext)) = raceway_slice(c, &c.cone, k, no_gap, &ck, &a, rad, &cone, roller_point_velocity, psid) {
+            if let Some((fk, pk, q, pw, ext)) = raceway_slice(c, &c.cone, k, no_gap, &ck_c, &a_c, rad, &cone, roller_point_velocity, psid) {
                 f += fk;
                 m += (pk - pos).cross(&fk);
                 rec.qi += q;
@@ -550,15 +555,24 @@ pub(crate) fn evaluate(
         let (spp, cpp) = psi_p.sin_cos();
         let e_tp = V3::new(0.0, -spp, cpp);
         let pocket_origin = cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
-        let w_rel_spin = (w - V3::x() * cage_rate).dot(&a);
+        let w_cage_rel = w - V3::x() * cage_rate;
+        let w_rel_spin = w_cage_rel.dot(&a);
+        // position across the pocket and velocity relative to the cage are affine in the
+        // station s along the axis: value at the centre of mass + s * rate
+        let tau0 = (pos - pocket_origin).dot(&e_tp);
+        let tau1 = a.dot(&e_tp);
+        let v0 = roller_point_velocity(&pos) - cage_point_velocity(&pos);
+        let v1 = w_cage_rel.cross(&a);
+        let rim_dir = w_cage_rel.cross(&e_tp);
         for k in 0..c.s_cm.len() {
-            let ck = pos + a * c.s_cm[k];
+            let sk = c.s_cm[k];
+            let ck = pos + a * sk;
             let rad = c.radius[k];
-            let tau = (ck - pocket_origin).dot(&e_tp);
+            let tau = tau0 + tau1 * sk;
             let u_sum = w_rel_spin.abs() * rad;
             // relative velocity at the slice centre and the rim's offset towards the walls
-            let v_centre = roller_point_velocity(&ck) - cage_point_velocity(&ck);
-            let v_rim = (w - V3::x() * cage_rate).cross(&(e_tp * rad));
+            let v_centre = v0 + v1 * sk;
+            let v_rim = rim_dir * rad;
             for side in [1.0_f64, -1.0] {
                 // gap to the wall on side `side` (front wall at +e_tp)
                 let gap = c.pocket_half - side * tau;

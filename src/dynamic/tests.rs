@@ -406,3 +406,27 @@ fn explore_switches() {
         }
     }
 }
+
+/// N right-hand-side evaluations at the initial state of the [W25] case (for profiling with
+/// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`).
+#[test]
+#[ignore]
+fn rhs_cost() {
+    let n: usize = std::env::var("RHS_N").ok().and_then(|s| s.parse().ok()).unwrap_or(100);
+    let b = Bearing::default_preset();
+    let mut p = crate::model::Parameters::from_bearing(&b);
+    p.fidelity = crate::model::Fidelity::Dynamic;
+    let i = crate::model::Inputs::from_bearing(&b);
+    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
+    let mut out = Outputs::new(b.roller_count);
+    let mut x = Vec::new();
+    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+    let mut d = super::Dynamic::new(&b, &p).unwrap();
+    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let mut dy = vec![0.0; st.y.len()];
+    let t0 = std::time::Instant::now();
+    for _ in 0..n {
+        d.rhs(&i, &st.y, &mut dy);
+    }
+    println!("{n} rhs: {:?} per rhs, dy[20] = {}", t0.elapsed() / n as u32, dy[20]);
+}
