@@ -138,8 +138,10 @@ impl Parameters {
         if !(self.eta0.is_finite() && self.eta0 > 0.0 && self.eta0 <= 100.0) {
             return bad("oil.eta0", format!("must be in (0, 100] Pa s, got {}", self.eta0));
         }
-        if !(self.alpha.is_finite() && self.alpha >= 0.0 && self.alpha <= 1e-7) {
-            return bad("oil.alpha", format!("must be in [0, 1e-7] 1/Pa, got {}", self.alpha));
+        // The EHL rolling resistance grows as alpha^-0.342 towards 0 (and is 0 at 0): values
+        // between 0 and 1e-10 1/Pa are no oil and overflow it.
+        if !(self.alpha.is_finite() && (self.alpha == 0.0 || (1e-10..=1e-7).contains(&self.alpha))) {
+            return bad("oil.alpha", format!("must be 0 or in [1e-10, 1e-7] 1/Pa, got {}", self.alpha));
         }
         if !(self.roughness.is_finite() && self.roughness >= 0.0 && self.roughness <= 1e-4) {
             return bad("roughness", format!("must be in [0, 1e-4] m, got {}", self.roughness));
@@ -263,6 +265,28 @@ impl Inputs {
                 return Err(ModelError::InvalidInput {
                     name,
                     message: format!("is {v}; inputs must be finite"),
+                });
+            }
+        }
+        // Speed: n dm up to 1e7 mm/min, three times the fastest aero-engine bearings; beyond
+        // it the centrifugal and friction terms overflow.
+        let max_speed = 1e7 / (b.pitch_diameter * 1e3) * std::f64::consts::PI / 30.0;
+        if self.speed.abs() > max_speed {
+            return Err(ModelError::InvalidInput {
+                name: "speed",
+                message: format!(
+                    "{:.6e} rad/s exceeds the model's range of +-{max_speed:.1} rad/s (n dm = 1e7 mm/min on a pitch diameter of {:.1} mm)",
+                    self.speed,
+                    b.pitch_diameter * 1e3
+                ),
+            });
+        }
+        // Forces: far beyond any bearing, and small enough that their squares stay finite.
+        for (name, v) in [("Fx", self.fx), ("Fy", self.fy), ("Fz", self.fz)] {
+            if v.abs() > 1e10 {
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!("{v:.6e} N exceeds the model's range of +-1e10 N"),
                 });
             }
         }
