@@ -132,39 +132,34 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], 
         );
         y += ystep;
     }
+    // x ticks: 1, 2, 5 per decade on a log axis, a nice step otherwise.
+    let mut ticks: Vec<(f64, f64)> = Vec::new();
     if log_x {
-        let mut k = x0.floor() as i32;
-        while (k as f64) <= x1 + 1e-9 {
+        for k in (x0.floor() as i32)..=(x1.ceil() as i32) {
             for m in [1.0, 2.0, 5.0] {
                 let v = m * 10f64.powi(k);
-                let lv = v.log10();
-                if lv >= x0 - 1e-9 && lv <= x1 + 1e-9 {
-                    let xx = px(v);
-                    let _ = writeln!(
-                        out,
-                        r##"<line x1="{xx:.1}" y1="{TOP}" x2="{xx:.1}" y2="{:.1}" stroke="#eee"/><text x="{xx:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                        TOP + ph,
-                        TOP + ph + 16.0,
-                        fmt_tick(v, v / 10.0)
-                    );
+                if v.log10() >= x0 - 1e-9 && v.log10() <= x1 + 1e-9 {
+                    ticks.push((v, v / 10.0));
                 }
             }
-            k += 1;
         }
     } else {
         let xstep = nice_step(x1 - x0, 6.0);
         let mut x = (x0 / xstep).ceil() * xstep;
         while x <= x1 + 1e-9 * xstep.abs() {
-            let xx = px(x);
-            let _ = writeln!(
-                out,
-                r##"<line x1="{xx:.1}" y1="{TOP}" x2="{xx:.1}" y2="{:.1}" stroke="#eee"/><text x="{xx:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                TOP + ph,
-                TOP + ph + 16.0,
-                fmt_tick(x, xstep)
-            );
+            ticks.push((x, xstep));
             x += xstep;
         }
+    }
+    for (x, step) in ticks {
+        let xx = px(x);
+        let _ = writeln!(
+            out,
+            r##"<line x1="{xx:.1}" y1="{TOP}" x2="{xx:.1}" y2="{:.1}" stroke="#eee"/><text x="{xx:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            TOP + ph,
+            TOP + ph + 16.0,
+            fmt_tick(x, step)
+        );
     }
     let _ = writeln!(
         out,
