@@ -334,6 +334,11 @@ fn d19_section(w: &Writer) -> Result<String, CliError> {
          friction the order reverses.\n\
          - **Skew angle.** {:.3} deg at mu = 0.1 (the measured TRB range quoted in MODEL.md §8 is 0.07–0.6 deg); \
          it grows in proportion to mu until the contact reaches the end-face rim, then jumps to the pocket.\n\
+         - **Total torque against the pocket clearance (not a finding of MODEL.md §8).** At mu = 0.5 the total \
+         rises from {:.1} N m (0.3 mm) to {:.1} N m (1.8 mm, force preload): a wider pocket lets the rollers skew \
+         further, and their axial sliding on the raceways costs more than the roller–cage friction saves. Skews \
+         above about 1.5 deg (beyond the end-face rim) exceed the measured range; the model then holds the roller \
+         by the raceways' contact shift and the pocket only.\n\
          - **Torque level.** Below the critical mu the end–rib sliding is the largest part at low mu and the \
          roller–race part (kinematic and axial sliding of the skewed rollers) overtakes it as the skew grows. \
          [D19]'s absolute torques cannot be compared: its paper was not available to us (docs/model.md).\n",
@@ -351,7 +356,9 @@ fn d19_section(w: &Writer) -> Result<String, CliError> {
             lower.join(", ")
         },
         by_mu[1][4].reaction_fx,
-        skew01
+        skew01,
+        by_pocket[0][0].friction_torque,
+        by_pocket[0].last().unwrap().friction_torque
     );
     Ok(md)
 }
