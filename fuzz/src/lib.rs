@@ -1,0 +1,2 @@
+//! Fuzz targets of the bearing element; see `targets.rs`.
+pub mod targets;
