@@ -7,7 +7,8 @@
 # 1. the project venv .venv (Python 3.11), (re)created when missing or when
 #    tests/python/requirements.txt changed (its hash is kept in .venv);
 # 2. cargo test --release (all Rust unit and integration tests);
-# 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu);
+# 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu), then its leak check
+#    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh);
 # 4. pytest tests/python.
 # Needs only Rust (cargo), Python 3.11 with pip (and venv), and a C toolchain for cargo.
 set -euo pipefail
@@ -86,6 +87,15 @@ begin "cargo run --release -- fmu"
 cargo run --release --quiet -- fmu || fail "cargo run --release -- fmu"
 [ -f target/fmu/TaperedRollerBearing.fmu ] || fail "target/fmu/TaperedRollerBearing.fmu was not written"
 end "cargo run --release -- fmu"
+
+# --- 3b. Robustness: leak check of the packaged FMU, bounded fuzzing (issue 6) ---------------------
+begin "leak check (valgrind)"
+./scripts/leaks.sh 20 || fail "scripts/leaks.sh"
+end "leak check (valgrind)"
+
+begin "fuzz (stable driver, 2 x 10 s)"
+./scripts/fuzz.sh 10 || fail "scripts/fuzz.sh (crash input in fuzz/artifacts/)"
+end "fuzz (stable driver)"
 
 # --- 4. Python harness ---------------------------------------------------------------------------
 begin "pytest tests/python"
