@@ -131,19 +131,14 @@ fn serialized_in(s: S) -> Vec<c_char> {
             S::Error => assert_eq!(fmi2DoStep(c, 0.0, -1.0, 1), FMI2_ERROR),
             _ => {}
         }
-        let mut state: Fmi2FmuState = ptr::null_mut();
-        assert_eq!(fmi2GetFMUstate(c, &mut state), FMI2_OK);
-        let mut size = 0;
-        assert_eq!(fmi2SerializedFMUstateSize(c, state, &mut size), FMI2_OK);
-        let mut bytes = vec![0 as c_char; size];
-        assert_eq!(fmi2SerializeFMUstate(c, state, bytes.as_mut_ptr(), size), FMI2_OK);
-        assert_eq!(bytes[8] as u8, s as u8, "state byte of the serialized state");
-        bytes
     }
+    let bytes = serialize_now(c);
+    assert_eq!(bytes[8] as u8, s as u8, "state byte of the serialized state");
+    bytes
 }
 
-/// The state-machine state of `c`, read from a fresh serialized FMU state.
-fn state_of(c: Fmi2Component) -> u8 {
+/// The serialized FMU state of `c` now (the state handle is freed again).
+fn serialize_now(c: Fmi2Component) -> Vec<c_char> {
     unsafe {
         let mut state: Fmi2FmuState = ptr::null_mut();
         assert_eq!(fmi2GetFMUstate(c, &mut state), FMI2_OK);
@@ -152,8 +147,23 @@ fn state_of(c: Fmi2Component) -> u8 {
         let mut bytes = vec![0 as c_char; size];
         assert_eq!(fmi2SerializeFMUstate(c, state, bytes.as_mut_ptr(), size), FMI2_OK);
         assert_eq!(fmi2FreeFMUstate(c, &mut state), FMI2_OK);
-        bytes[8] as u8
+        bytes
     }
+}
+
+/// Put `c` into the serialized state `bytes`; returns the FMU state handle it keeps.
+fn restore(c: Fmi2Component, bytes: &[c_char]) -> Fmi2FmuState {
+    let mut own: Fmi2FmuState = ptr::null_mut();
+    unsafe {
+        assert_eq!(fmi2DeSerializeFMUstate(c, bytes.as_ptr(), bytes.len(), &mut own), FMI2_OK);
+        assert_eq!(fmi2SetFMUstate(c, own), FMI2_OK);
+    }
+    own
+}
+
+/// The state-machine state of `c`, read from a fresh serialized FMU state.
+fn state_of(c: Fmi2Component) -> u8 {
+    serialize_now(c)[8] as u8
 }
 
 /// One call with valid arguments, on instance `c` holding FMU state `own`; `bytes` is a
@@ -279,11 +289,7 @@ fn every_function_in_every_state_follows_the_fmi2_state_table() {
             // A fresh instance put into state `s` by restoring the serialized state.
             let f = fmu(PRESET);
             let c = f.component();
-            let mut own: Fmi2FmuState = ptr::null_mut();
-            unsafe {
-                assert_eq!(fmi2DeSerializeFMUstate(c, bytes.as_ptr(), bytes.len(), &mut own), FMI2_OK);
-                assert_eq!(fmi2SetFMUstate(c, own), FMI2_OK);
-            }
+            let mut own = restore(c, bytes);
             assert_eq!(state_of(c), *s as u8);
             f.take_log();
             let status = call(c, &mut own, bytes);
@@ -316,12 +322,8 @@ fn platform_and_version_and_free_work_in_every_state() {
         let bytes = serialized_in(s);
         let f = fmu(PRESET);
         let c = f.component();
-        let mut own: Fmi2FmuState = ptr::null_mut();
-        unsafe {
-            assert_eq!(fmi2DeSerializeFMUstate(c, bytes.as_ptr(), bytes.len(), &mut own), FMI2_OK);
-            assert_eq!(fmi2SetFMUstate(c, own), FMI2_OK);
-            assert!(!fmi2GetTypesPlatform().is_null() && !fmi2GetVersion().is_null());
-        }
+        restore(c, &bytes);
+        assert!(!fmi2GetTypesPlatform().is_null() && !fmi2GetVersion().is_null());
         // Dropping `f` frees the instance, and with it the FMU state still allocated.
     }
 }
@@ -802,18 +804,8 @@ fn fmu_states_serialized_in_every_state_round_trip_bitwise_across_instances() {
                     scope.spawn(move || {
                         let f = fmu(PRESET);
                         let c = f.component();
-                        let mut own: Fmi2FmuState = ptr::null_mut();
-                        unsafe {
-                            assert_eq!(fmi2DeSerializeFMUstate(c, bytes.as_ptr(), bytes.len(), &mut own), FMI2_OK);
-                            assert_eq!(fmi2SetFMUstate(c, own), FMI2_OK);
-                            let mut fresh: Fmi2FmuState = ptr::null_mut();
-                            assert_eq!(fmi2GetFMUstate(c, &mut fresh), FMI2_OK);
-                            let mut size = 0;
-                            assert_eq!(fmi2SerializedFMUstateSize(c, fresh, &mut size), FMI2_OK);
-                            let mut out = vec![0 as c_char; size];
-                            assert_eq!(fmi2SerializeFMUstate(c, fresh, out.as_mut_ptr(), size), FMI2_OK);
-                            out
-                        }
+                        restore(c, bytes);
+                        serialize_now(c)
                     })
                 })
                 .collect();
@@ -828,12 +820,10 @@ fn fmu_states_serialized_in_every_state_round_trip_bitwise_across_instances() {
     let continue_from = |bytes: &[c_char]| {
         let f = fmu(PRESET);
         let c = f.component();
-        let mut own: Fmi2FmuState = ptr::null_mut();
         let (reals, _) = matrix::output_vrs(bearing(PRESET).roller_count);
         let mut v = vec![0.0; reals.len()];
+        restore(c, bytes);
         unsafe {
-            assert_eq!(fmi2DeSerializeFMUstate(c, bytes.as_ptr(), bytes.len(), &mut own), FMI2_OK);
-            assert_eq!(fmi2SetFMUstate(c, own), FMI2_OK);
             assert_eq!(fmi2SetReal(c, &var::FY, 1, &3000.0), FMI2_OK);
             assert_eq!(fmi2DoStep(c, 0.0, 1e-3, 1), FMI2_OK);
             assert_eq!(fmi2GetReal(c, reals.as_ptr(), reals.len(), v.as_mut_ptr()), FMI2_OK);

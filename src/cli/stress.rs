@@ -74,7 +74,7 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
     }
     let mut slow: Vec<(f64, &str)> = run.sim.iter().zip(&run.cases).map(|(r, c)| (r.seconds, c.id.as_str())).collect();
     slow.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let shown: Vec<String> = slow.iter().take(30).map(|(s, id)| format!("{id} {s:.1} s")).collect();
+    let shown: Vec<String> = slow.iter().take(5).map(|(s, id)| format!("{id} {s:.1} s")).collect();
     println!("slowest: {}", shown.join(", "));
     if args.filter.is_none() {
         let mut command = "cargo run --release -- stress".to_string();
