@@ -525,6 +525,21 @@ impl BearingFile {
             ));
         }
         let axis = cone + half;
+        // The roller must fit axially inside the bearing width (a cylindrical roller of any
+        // length passes the radial check below; 1e308 mm gave non-finite outputs).
+        let axial_extent = length * axis.cos() + mean_d * axis.sin();
+        if axial_extent > width {
+            return Err(err(
+                "rollers.length_mm",
+                format!(
+                    "a roller of length {:.3} mm and diameter {:.3} mm spans {:.3} mm axially, more than the bearing width {:.3} mm",
+                    length / MM,
+                    mean_d / MM,
+                    axial_extent / MM,
+                    width / MM
+                ),
+            ));
+        }
         // The roller must fit radially inside the envelope and the rollers on the pitch circle.
         let radial_extent = 0.5 * mean_d * axis.cos() + 0.5 * length * axis.sin();
         if 0.5 * dm - radial_extent <= 0.5 * bore || 0.5 * dm + radial_extent >= 0.5 * od {
