@@ -613,6 +613,11 @@ fn absurd_geometry_and_hostile_text_are_refused_clearly() {
             "rollers",
         ),
         ("zero rollers", with(&[("rollers.count", json!(0))]), "rollers.count"),
+        (
+            "cylindrical roller longer than the bearing (fuzzer find)",
+            PRESETS[3].1.replace("\"length_mm\": 9.0", "\"length_mm\": 1e308"),
+            "rollers.length_mm",
+        ),
         ("two rollers", with(&[("rollers.count", json!(2))]), "rollers.count"),
         (
             "huge roller count",
