@@ -904,10 +904,12 @@ impl QuasiStatic {
                 break;
             }
             // Damped update [Y22], non-monotone: contact problems often pass through a larger
-            // residual on the way (rollers entering and leaving the load zone), so a step is
-            // halved only while its merit exceeds 10x the worst of the last few iterates.
+            // residual on the way (rollers entering and leaving the load zone, a ring crossing
+            // a clearance and landing on its rollers), so a full step is taken while its merit
+            // stays below 100x the worst of the last few iterates, and a halved step is taken
+            // as long as it does not increase the merit (across a gap the merit is flat).
             history[iterations as usize % history.len()] = merit;
-            let allowed = 10.0 * history.iter().fold(0.0_f64, |m, h| m.max(*h));
+            let allowed = 100.0 * history.iter().fold(0.0_f64, |m, h| m.max(*h));
             let mut alpha = 1.0;
             let mut accepted = false;
             let mut trial = std::mem::take(&mut self.trial);
@@ -916,7 +918,7 @@ impl QuasiStatic {
                     trial[i] = x[i] + alpha * self.step[i];
                 }
                 let (mr, me, fr, rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
-                if me < merit || (me < allowed && alpha == 1.0) || alpha < 1e-3 {
+                if me <= merit || (me < allowed && alpha == 1.0) || alpha < 1e-3 {
                     x.copy_from_slice(&trial);
                     max_r = mr;
                     merit = me;

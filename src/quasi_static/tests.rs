@@ -605,3 +605,22 @@ fn debug_skew() {
         o.loaded_rollers
     );
 }
+
+#[test]
+fn a_ring_crossing_a_positive_clearance_lands_in_a_few_iterations() {
+    // Regression: with positive clearance the cone first travels across the gap with no
+    // contact (flat residual), then lands on the roller at the lobe's low point.
+    let (b, mut p, i) = setup("CRB-TRILOBE");
+    for c in [4e-6, 5e-6, 10e-6, 20e-6] {
+        p.clearance = c;
+        let s = solve_at(&b, &p, &i, 0.0);
+        assert!(s.report.iterations <= 20, "clearance {c}: {} iterations", s.report.iterations);
+        // the ring sits about half the clearance off centre, on its loaded roller(s)
+        assert!(
+            s.out.cone_y > 0.5 * c && s.out.cone_y < 0.5 * c + 5e-6,
+            "clearance {c}: cone.y {}",
+            s.out.cone_y
+        );
+        assert!(s.out.loaded_rollers >= 1);
+    }
+}
