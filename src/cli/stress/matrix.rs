@@ -1410,7 +1410,7 @@ fn check(
         return Err(format!("powerLoss {power} < 0"));
     }
     let parts: f64 = i_parts.iter().map(|i| rv[*i]).sum();
-    if (parts - torque).abs() > 1e-9 * torque.abs().max(1e-12) {
+    if (parts - torque).abs() > 1e-9 * torque.abs().max(parts.abs()) + 1e-12 {
         return Err(format!("frictionTorque {torque} != sum of its parts {parts}"));
     }
     if let Some(k) = loads.iter().find(|k| rv[**k] < 0.0) {
