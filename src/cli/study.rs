@@ -5,6 +5,7 @@
 //! its section to stdout and writes its figures.
 
 mod svg;
+mod w25;
 
 use super::CliError;
 use std::fmt::Write as _;
@@ -18,7 +19,10 @@ pub enum Which {
     D19,
     L22,
     Y22,
+    /// [D19], [L22] and [Y22] (quasi-static): docs/results-studies.md.
     All,
+    /// The dynamic study [W25] (fidelity 1, a few minutes): docs/results-dynamic.md.
+    W25,
 }
 
 #[derive(Debug, clap::Args)]
@@ -767,6 +771,9 @@ fn y22_section(w: &Writer) -> Result<String, CliError> {
 }
 
 pub fn run(args: StudyArgs) -> Result<(), CliError> {
+    if args.which == Which::W25 {
+        return w25::report(&args.docs);
+    }
     let figures = args.docs.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
     let w = Writer { figures };

@@ -47,7 +47,8 @@ fn nice_step(span: f64, n: f64) -> f64 {
 }
 
 fn fmt_tick(v: f64, step: f64) -> String {
-    if v == 0.0 {
+    // ticks are multiples of the step: a residue of rounding is zero
+    if v.abs() < 1e-9 * step.abs() {
         return "0".into();
     }
     if v.abs() >= 1e5 || v.abs() < 1e-3 {
