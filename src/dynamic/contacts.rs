@@ -130,7 +130,8 @@ struct FlangeConst {
 impl Constants {
     pub fn new(b: &Bearing, p: &Parameters, g: &Geometry) -> Constants {
         let (ri, ro) = g.pitch_contact_radii();
-        let cage_ratio = (1.0 - p.cage_slip_rate) * ri / (ri + ro);
+        // pure rolling (epicyclic) reference speeds: start values and tolerance scales
+        let cage_ratio = ri / (ri + ro);
         let spin_ratio = -cage_ratio * ro / g.mean_radius;
         let cm = g.cm_offset;
         let cos_h = g.half_angle.cos();

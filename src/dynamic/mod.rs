@@ -137,8 +137,11 @@ impl Dynamic {
         let mut y = vec![0.0; self.n_states()];
         let rest = self.p.start_from_rest;
         let speed = if rest { 0.0 } else { inputs.speed };
-        let wc = qs.cage_speed(speed);
-        let w_spin = qs.spin_ratio() * speed;
+        // epicyclic speeds of pure rolling (the quasi-static cage slip rate is a parameter
+        // of its torque model, not of the dynamics)
+        let wc = self.c.cage_ratio * speed;
+        let w_spin = self.c.spin_ratio * speed;
+        let _ = qs;
         y[CONE] = x[0];
         y[CONE + 1] = x[1];
         y[CONE + 2] = x[2];
@@ -253,13 +256,22 @@ impl Dynamic {
         out.reaction_mz = -totals.m_cone[2];
         out.cage_speed = contacts::cage_speed(g, &self.p, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
-        out.friction_torque = -(totals.t_cone_raceway + totals.t_cone_flange);
-        let w = inputs.speed;
-        let per_speed = if w.abs() > 1e-9 { 1.0 / w } else { 0.0 };
-        out.friction_torque_raceway = totals.p_raceway * per_speed;
-        out.friction_torque_flange = totals.p_flange * per_speed;
-        out.friction_torque_cage = totals.p_cage * per_speed;
+        let total = -(totals.t_cone_raceway + totals.t_cone_flange);
+        out.friction_torque = total;
         out.power_loss = totals.p_raceway + totals.p_flange + totals.p_cage;
+        // Its parts split it in proportion to the power dissipated at the raceways, the flange
+        // and the cage, so they always add up to it (without dissipation: the moments of the
+        // raceway and flange forces).
+        if out.power_loss > 0.0 {
+            let share = total / out.power_loss;
+            out.friction_torque_raceway = totals.p_raceway * share;
+            out.friction_torque_flange = totals.p_flange * share;
+            out.friction_torque_cage = totals.p_cage * share;
+        } else {
+            out.friction_torque_raceway = -totals.t_cone_raceway;
+            out.friction_torque_flange = -totals.t_cone_flange;
+            out.friction_torque_cage = 0.0;
+        }
         out.solver_iterations = 0;
         out.solver_residual = 0.0;
         out.integrator_steps = state.counters.steps.min(i32::MAX as u64) as i32;
