@@ -473,20 +473,8 @@ impl Instance {
         FMI2_OK
     }
 
-    /// The FMU has no String variables: any value reference is unknown.
     pub fn get_string(&mut self, vrs: Option<&[u32]>, values_present: bool) -> Fmi2Status {
-        const F: &str = "fmi2GetString";
-        if !self.allowed(mask::GET, F) {
-            return FMI2_ERROR;
-        }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
-        if !values_present {
-            return self.null_argument(F, "value[]");
-        }
-        match vrs.first() {
-            Some(&vr) => self.unknown(F, vr, "String"),
-            None => FMI2_OK,
-        }
+        self.strings("fmi2GetString", mask::GET, vrs, values_present)
     }
 
     pub fn set_real(&mut self, vrs: Option<&[u32]>, values: Option<&[f64]>) -> Fmi2Status {
@@ -532,18 +520,24 @@ impl Instance {
         FMI2_OK
     }
 
-    /// The FMU has no String variables: any value reference is unknown.
     pub fn set_string(&mut self, vrs: Option<&[u32]>, values_present: bool) -> Fmi2Status {
-        const F: &str = "fmi2SetString";
-        if !self.allowed(mask::SET, F) {
+        self.strings("fmi2SetString", mask::SET, vrs, values_present)
+    }
+
+    /// fmi2GetString / fmi2SetString: the FMU has no String variables, so any value
+    /// reference is unknown (an empty request is fine).
+    fn strings(&mut self, function: &'static str, allowed: u8, vrs: Option<&[u32]>, values_present: bool) -> Fmi2Status {
+        if !self.allowed(allowed, function) {
             return FMI2_ERROR;
         }
-        let Some(vrs) = vrs else { return self.null_argument(F, "vr[]") };
+        let Some(vrs) = vrs else {
+            return self.null_argument(function, "vr[]");
+        };
         if !values_present {
-            return self.null_argument(F, "value[]");
+            return self.null_argument(function, "value[]");
         }
         match vrs.first() {
-            Some(&vr) => self.unknown(F, vr, "String"),
+            Some(&vr) => self.unknown(function, vr, "String"),
             None => FMI2_OK,
         }
     }
