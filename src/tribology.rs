@@ -89,6 +89,18 @@ impl ViscosityTable {
         let f = u - k as f64;
         fm::exp(self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k]))
     }
+
+    /// ln of [`ViscosityTable::eta`] (the interpolated logarithm itself inside the table).
+    #[inline]
+    pub fn ln_eta(&self, p: f64) -> f64 {
+        let u = p.max(0.0) / Self::STEP;
+        let k = u as usize;
+        if k + 1 >= Self::N {
+            return fm::ln(roelands_viscosity_with(self.eta0, self.ln_eta0_967, p));
+        }
+        let f = u - k as f64;
+        self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k])
+    }
 }
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
@@ -192,6 +204,11 @@ pub fn flange_boundary_mu(mu0: f64, film_ratio: f64) -> f64 {
 /// p = p_h sqrt(1 - x^2/a^2 - y^2/b^2). Integrated in polar coordinates of the unit disc
 /// (Gauss-Legendre in the radius, the integrand does not depend on the angle).
 pub fn flange_viscous_traction(eta0: f64, v_s: f64, h: f64, a: f64, b: f64, p_h: f64) -> f64 {
+    flange_viscous_traction_with(eta0, fm::ln(eta0) + 9.67, v_s, h, a, b, p_h)
+}
+
+/// [`flange_viscous_traction`] with ln(eta0) + 9.67 (`fastmath::ln`) precomputed: the same value.
+pub fn flange_viscous_traction_with(eta0: f64, ln_eta0_967: f64, v_s: f64, h: f64, a: f64, b: f64, p_h: f64) -> f64 {
     if a <= 0.0 || b <= 0.0 || v_s == 0.0 {
         return 0.0;
     }
@@ -220,7 +237,7 @@ pub fn flange_viscous_traction(eta0: f64, v_s: f64, h: f64, a: f64, b: f64, p_h:
     for k in 0..8 {
         let rho = X[k];
         let p = p_h * (1.0 - rho * rho).max(0.0).sqrt();
-        let tau_visc = roelands_viscosity(eta0, p) * v_s.abs() / h;
+        let tau_visc = roelands_viscosity_with(eta0, ln_eta0_967, p) * v_s.abs() / h;
         let tau = tau_visc.min(LIMITING_SHEAR * p);
         sum += W[k] * tau * rho;
     }
