@@ -25,6 +25,7 @@
 use super::{RollerRecord, Totals, CAGE, CONE, PER_ROLLER, ROLLERS};
 use crate::bearing::Bearing;
 use crate::contact::{LineLaw, PointContact};
+use crate::fastmath as fm;
 use crate::geometry::Geometry;
 use crate::model::{Inputs, Lubrication, Parameters, Preload};
 use crate::tribology as tr;
@@ -60,7 +61,13 @@ pub(crate) struct Constants {
     waveform: f64,
     dd_half: Vec<f64>,
     damping: f64,
+    /// 2 zeta sqrt(m / s): the slice damping coefficient is this times sqrt(dq/d delta).
+    damping_factor: f64,
     e_prime: f64,
+    /// ln(eta0) + 9.67 (Roelands, `fastmath::ln`) for the flange film traction.
+    ln_eta0_967: f64,
+    /// ln(1.5 sigma): at or above it the raceway film is full (lambda >= 1.5).
+    ln_full_film: f64,
     eta0: f64,
     /// Roelands viscosity of the oil against pressure.
     viscosity: tr::ViscosityTable,
@@ -97,8 +104,9 @@ struct LineConst {
     reference: [f64; 2],
     normal: [f64; 2],
     law: LineLaw,
-    r_bar: Vec<f64>,
     ln_film: Vec<f64>,
+    /// Mean Hertz pressure squared per unit load per length: p_mean = sqrt(w k_pmean).
+    k_pmean: Vec<f64>,
 }
 
 impl LineConst {
@@ -107,7 +115,7 @@ impl LineConst {
             reference: line.point[0],
             normal: line.normal,
             law: line.law.clone(),
-            r_bar: line.r_bar.clone(),
+            k_pmean: line.r_bar.iter().map(|r| PI * e_prime / (32.0 * r)).collect(),
             ln_film: line
                 .r_bar
                 .iter()
@@ -169,6 +177,13 @@ impl Constants {
             waveform: p.outer_waveform,
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
             damping: p.contact_damping,
+            damping_factor: 2.0 * p.contact_damping * (g.roller_mass / g.slices as f64).sqrt(),
+            ln_eta0_967: fm::ln(p.eta0) + 9.67,
+            ln_full_film: if p.roughness > 0.0 {
+                (1.5 * p.roughness).ln()
+            } else {
+                f64::NEG_INFINITY
+            },
             e_prime: g.e_prime,
             eta0: p.eta0,
             viscosity: tr::ViscosityTable::new(p.eta0),
@@ -222,171 +237,168 @@ pub(crate) fn cage_speed(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
     (0..g.z).map(|j| y[ROLLERS + PER_ROLLER * j + 5]).sum::<f64>() / g.z as f64
 }
 
-/// The radial unit vector of the point `q` about the x axis (and its distance).
-#[inline]
-fn radial(q: &V3) -> (V3, f64) {
-    let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
-    if rho > 0.0 {
-        (V3::new(0.0, q[1] / rho, q[2] / rho), rho)
-    } else {
-        (V3::new(0.0, 1.0, 0.0), 0.0)
-    }
-}
-
-/// Traction on a surface sliding at `v_t` (tangential, roller relative to ring) under normal
-/// load `q`, entrainment speed `u_e`: returns the force on the roller and the dissipated power.
-#[inline]
-fn raceway_traction(c: &Constants, q: f64, v_t: &V3, u_e: f64, r_bar: f64, ln_film: f64) -> (V3, f64) {
-    let vs = v_t.norm();
+/// Traction coefficient of a raceway slice: the force on the roller is -coef v_t and the
+/// dissipated power coef |v_t|^2, for normal load `q`, sliding speed `vs` = |v_t| and
+/// entrainment speed `u_e`. Boundary / mixed / full-film law [W25] (full film: Eyring at the
+/// Roelands viscosity of the mean Hertz pressure, capped at 0.08 p), or dry Coulomb.
+///
+/// The Hamrock film h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) stays in logarithms: the film
+/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / h takes
+/// exp(ln eta - ln h) (the viscosity table interpolates ln eta), so the full-film regime costs
+/// two logarithms and one exponential before the asinh.
+#[inline(always)]
+fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
     if q <= 0.0 || vs == 0.0 {
-        return (V3::zeros(), 0.0);
+        return 0.0;
     }
-    let coef = if c.dry {
-        c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
-    } else if u_e < 1e-6 {
+    if c.dry {
+        return c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt();
+    }
+    if u_e < 1e-6 {
         // no rolling: boundary friction, regularised
-        0.1 * q / (vs * vs + V_EPS * V_EPS).sqrt()
-    } else {
-        let s = (vs / u_e).max(1e-9);
-        let w = q / c.slice_len;
-        let h = tr::film_line_fast(ln_film, u_e, w);
-        let lambda = if c.sigma > 0.0 { h / c.sigma } else { f64::INFINITY };
-        // boundary / mixed / full film [W25]; each law only where it is used
-        let full_film = || {
-            let p_mean = (w * PI * c.e_prime / (32.0 * r_bar)).sqrt(); // w / (2 b), b the Hertz half-width
-            tr::full_film_mu_at_viscosity(c.viscosity.eta(p_mean), s * u_e, h, p_mean).abs()
+        return 0.1 * q / (vs * vs + V_EPS * V_EPS).sqrt();
+    }
+    let s = (vs / u_e).max(1e-9);
+    let w = q / c.slice_len;
+    let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
+    let v_s = s * u_e;
+    // full film: Eyring shear at the Roelands viscosity of the mean Hertz pressure
+    let full_film = || {
+        let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
+                                                   // eta / max(h, 1e-9)
+        let eta_h = if ln_h >= LN_MIN_FILM {
+            fm::exp(c.viscosity.ln_eta(p_mean) - ln_h)
+        } else {
+            c.viscosity.eta(p_mean) / 1e-9
         };
-        let mu = if lambda >= 1.5 {
+        let x = eta_h * v_s / tr::EYRING_STRESS;
+        let asinh = if x < 0.1 {
+            let x2 = x * x;
+            x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
+        } else {
+            fm::ln(x + (x * x + 1.0).sqrt())
+        };
+        let tau_e = tr::EYRING_STRESS * asinh;
+        let tau_l = tr::LIMITING_SHEAR * p_mean;
+        // smooth minimum of the Eyring stress and the limiting shear stress
+        let tau = tau_e * tau_l / (tau_e.powi(4) + tau_l.powi(4)).sqrt().sqrt();
+        tau / p_mean
+    };
+    let mu = if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
+        full_film()
+    } else {
+        let lambda = fm::exp(ln_h) / c.sigma;
+        if lambda >= 1.5 {
             full_film()
         } else if lambda < 0.01 {
             tr::boundary_mu(s)
         } else {
             tr::traction_mu(lambda, s, full_film())
-        };
-        mu * q / (s * u_e)
+        }
     };
-    (-v_t * coef, coef * vs * vs)
+    mu * q / v_s
 }
 
-/// One slice against one raceway. `to_ring` maps a global point into the raceway's frame
-/// (identity for the cup), `from_ring` back. Returns (force on roller, contact point,
-/// elastic+damping normal load, dissipated power, extrapolated).
-#[allow(clippy::too_many_arguments)]
+/// ln(1e-9): the film thickness floor of the Eyring law.
+const LN_MIN_FILM: f64 = -20.723_265_836_946_41;
+
+/// A raceway as one slice loop sees it: the roller's kinematics in the raceway's frame, the
+/// velocity field of the raceway and of the orbiting contact point in that frame.
+struct Race<'a> {
+    line: &'a LineConst,
+    /// Roller centre of mass, velocity, angular velocity and axis in this frame.
+    pos: V3,
+    vel: V3,
+    w: V3,
+    a: V3,
+    /// Raceway velocity at p: v0 + omega x p (the cup: zero).
+    ring_v0: V3,
+    ring_omega: V3,
+    /// Velocity of the contact point orbiting with the roller: pt_v0 + pt_omega x p.
+    pt_v0: V3,
+    pt_omega: V3,
+    /// Largest value of the extra gap term (clearance, lobes) for the cheap gap test.
+    gap_max: f64,
+}
+
+/// Sums of one roller's slice loop against one raceway (force on the roller, its moment about
+/// the roller's centre of mass, normal load, dissipated power).
+#[derive(Default)]
+struct LineSum {
+    f: V3,
+    m: V3,
+    q: f64,
+    power: f64,
+    extrapolated: bool,
+}
+
+/// All slices of one roller against one raceway. `gap(p)` is the extra interference term at
+/// the contact point (clearance and lobes of the cup; zero for the cone).
 #[inline(always)]
-fn raceway_slice(
-    c: &Constants,
-    line: &LineConst,
-    k: usize,
-    gap: impl Fn(&V3) -> f64,
-    centre_local: &V3,
-    axis_local: &V3,
-    radius: f64,
-    frame: &RingFrame,
-    roller_point_velocity: impl Fn(&V3) -> V3,
-    orbit_rate: f64,
-) -> Option<(V3, V3, f64, f64, bool)> {
-    let (law, reference, normal) = (&line.law, line.reference, line.normal);
-    // slice centre and axis in the ring frame
-    let (cl, al) = (*centre_local, *axis_local);
-    let (er_c, _) = radial(&cl);
-    // into the ring: minus its normal
-    let g = -(V3::x() * normal[0] + er_c * normal[1]);
-    let mut d = g - al * g.dot(&al);
-    let dn = d.norm();
-    if dn == 0.0 {
-        return None;
-    }
-    d /= dn;
-    let pl = cl + d * radius;
-    let (er_p, rho_p) = radial(&pl);
-    let delta = -((pl[0] - reference[0]) * normal[0] + (rho_p - reference[1]) * normal[1]) + gap(&pl);
-    if delta <= 0.0 {
-        return None;
-    }
-    let (q_el, dq, ext) = law.load(k, delta);
-    let r_bar = line.r_bar[k];
-    let n_local = V3::x() * normal[0] + er_p * normal[1];
-    let n = frame.rotate_to_global(&n_local);
-    let p = frame.to_global(&pl);
-    let v_roller = roller_point_velocity(&p);
-    let v_ring = frame.velocity(&p);
-    let v_rel = v_roller - v_ring;
-    let vn = v_rel.dot(&n);
-    // damping: c = 2 zeta sqrt(m k_slice / s) per slice (critical for the whole line)
-    let c_damp = 2.0 * c.damping * (c.m_r * dq / c.radius.len() as f64).sqrt();
-    let q = (q_el - c_damp * vn).max(0.0);
-    let damping_power = (q - q_el) * (-vn);
-    let v_t = v_rel - n * vn;
-    // entrainment relative to the contact point, which orbits with the roller
-    let v_point = V3::x().cross(&p) * orbit_rate;
-    let u1 = v_roller - v_point;
-    let u2 = v_ring - v_point;
-    let ue_vec = (u1 + u2) * 0.5;
-    let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-    let (f_t, p_t) = raceway_traction(c, q, &v_t, u_e, r_bar, line.ln_film[k]);
-    Some((n * q + f_t, p, q, p_t + damping_power.max(0.0), ext))
-}
-
-/// A ring's pose: rotation (columns: the ring's axes in global coordinates), origin,
-/// translational velocity and angular velocity.
-pub(crate) struct RingFrame {
-    rot: nalgebra::Matrix3<f64>,
-    rot_t: nalgebra::Matrix3<f64>,
-    origin: V3,
-    velocity: V3,
-    omega: V3,
-    /// The fixed cup: every transform is the identity.
-    fixed: bool,
-}
-
-impl RingFrame {
-    #[inline(always)]
-    fn to_local(&self, q: &V3) -> V3 {
-        if self.fixed {
-            *q
-        } else {
-            self.rot_t * (q - self.origin)
+fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) -> LineSum {
+    let line = race.line;
+    let (r0, r1) = (line.reference[0], line.reference[1]);
+    let (n0, n1) = (line.normal[0], line.normal[1]);
+    let mut sum = LineSum::default();
+    for k in 0..c.s_cm.len() {
+        let rad = c.radius[k] + dd - c.shrink[k];
+        let cl = race.pos + race.a * c.s_cm[k];
+        let rho_c = (cl[1] * cl[1] + cl[2] * cl[2]).sqrt();
+        // Cheap gap test: the interference function is 1-Lipschitz in space and the contact
+        // point lies `rad` from the slice centre, so the centre's interference + rad + the
+        // largest extra gap bounds it from above.
+        let bound = -((cl[0] - r0) * n0 + (rho_c - r1) * n1) + rad + race.gap_max;
+        if bound < -1e-12 {
+            continue;
         }
-    }
-    #[inline(always)]
-    fn to_global(&self, q: &V3) -> V3 {
-        if self.fixed {
-            *q
-        } else {
-            self.rot * q + self.origin
+        let (ey, ez) = if rho_c > 0.0 { (cl[1] / rho_c, cl[2] / rho_c) } else { (1.0, 0.0) };
+        // deepest rim point: towards the raceway (minus its normal) projected on the disc plane
+        let g = V3::new(-n0, -ey * n1, -ez * n1);
+        let mut d = g - race.a * g.dot(&race.a);
+        let dn = d.norm();
+        if dn == 0.0 {
+            continue;
         }
-    }
-    #[inline(always)]
-    fn rotate_to_local(&self, v: &V3) -> V3 {
-        if self.fixed {
-            *v
-        } else {
-            self.rot_t * v
+        d /= dn;
+        let pl = cl + d * rad;
+        let rho_p = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
+        let delta = -((pl[0] - r0) * n0 + (rho_p - r1) * n1) + gap(&pl);
+        if delta <= 0.0 {
+            continue;
         }
+        let (q_el, dq, ext) = line.law.load(k, delta);
+        let (py, pz) = if rho_p > 0.0 { (pl[1] / rho_p, pl[2] / rho_p) } else { (1.0, 0.0) };
+        let n = V3::new(n0, py * n1, pz * n1);
+        let lever = pl - race.pos;
+        let v_roller = race.vel + race.w.cross(&lever);
+        let v_ring = race.ring_v0 + race.ring_omega.cross(&pl);
+        let v_rel = v_roller - v_ring;
+        let vn = v_rel.dot(&n);
+        // damping: c = 2 zeta sqrt(m k_slice / s) per slice (critical for the whole line)
+        let c_damp = c.damping_factor * dq.sqrt();
+        let q = (q_el - c_damp * vn).max(0.0);
+        let damping_power = (q - q_el) * (-vn);
+        let v_t = v_rel - n * vn;
+        // entrainment relative to the contact point, which orbits with the roller
+        let ue_vec = (v_roller + v_ring) * 0.5 - (race.pt_v0 + race.pt_omega.cross(&pl));
+        let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
+        let vs = v_t.norm();
+        let coef = traction_coef(c, line, k, q, vs, u_e);
+        let fk = n * q - v_t * coef;
+        sum.f += fk;
+        sum.m += lever.cross(&fk);
+        sum.q += q;
+        sum.power += coef * vs * vs + damping_power.max(0.0);
+        sum.extrapolated |= ext;
     }
-    #[inline(always)]
-    fn rotate_to_global(&self, v: &V3) -> V3 {
-        if self.fixed {
-            *v
-        } else {
-            self.rot * v
-        }
-    }
-    #[inline(always)]
-    fn velocity(&self, q: &V3) -> V3 {
-        if self.fixed {
-            V3::zeros()
-        } else {
-            self.velocity + self.omega.cross(&(q - self.origin))
-        }
-    }
+    sum
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
 /// per-roller `records`; return the totals.
 pub(crate) fn evaluate(
     g: &Geometry,
-    _p: &Parameters,
+    p: &Parameters,
     c: &Constants,
     inputs: &Inputs,
     y: &[f64],
@@ -395,35 +407,25 @@ pub(crate) fn evaluate(
 ) -> Totals {
     let z = g.z;
     let mut tot = Totals::default();
-    // cone pose
+    // cone pose: rotation R (columns: the cone's axes), origin, velocity, spin about R x
     let rot = super::cone_rotation(inputs.xi, inputs.zeta);
-    let axis_c = rot.column(0).into_owned();
+    let rot_t = rot.transpose();
+    let axis_c: V3 = rot.column(0).into_owned();
     let cone_x = if c.displacement_preload {
         inputs.axial_displacement
     } else {
         y[CONE]
     };
-    let cone = RingFrame {
-        rot,
-        rot_t: rot.transpose(),
-        fixed: false,
-        origin: V3::new(if c.axial { cone_x } else { 0.0 }, y[CONE + 1], y[CONE + 2]),
-        velocity: V3::new(
-            if c.displacement_preload || !c.axial { 0.0 } else { y[CONE + 3] },
-            y[CONE + 4],
-            y[CONE + 5],
-        ),
-        omega: axis_c * inputs.speed,
-    };
-    let id = nalgebra::Matrix3::identity();
-    let cup = RingFrame {
-        rot: id,
-        rot_t: id,
-        origin: V3::zeros(),
-        velocity: V3::zeros(),
-        omega: V3::zeros(),
-        fixed: true,
-    };
+    let origin = V3::new(if c.axial { cone_x } else { 0.0 }, y[CONE + 1], y[CONE + 2]);
+    let cone_vel = V3::new(
+        if c.displacement_preload || !c.axial { 0.0 } else { y[CONE + 3] },
+        y[CONE + 4],
+        y[CONE + 5],
+    );
+    // in the cone's frame: its own velocity, the bearing axis, the axis term of the orbit
+    let cone_vel_l = rot_t * cone_vel;
+    let x_l = rot_t * V3::x();
+    let x_cross_o_l = rot_t * V3::x().cross(&origin);
     // cage pose
     let (cage_psi, cage_rate, cage_pos, cage_vel) = if c.cage_dynamic {
         (
@@ -433,9 +435,9 @@ pub(crate) fn evaluate(
             V3::new(0.0, y[CAGE + 3], y[CAGE + 4]),
         )
     } else {
-        (cage_angle(g, _p, y), cage_speed(g, _p, y), V3::zeros(), V3::zeros())
+        (cage_angle(g, p, y), cage_speed(g, p, y), V3::zeros(), V3::zeros())
     };
-    let cage_point_velocity = |q: &V3| cage_vel + V3::x().cross(&(q - cage_pos)) * cage_rate;
+    let ns = c.s_cm.len();
 
     for j in 0..z {
         let o = ROLLERS + PER_ROLLER * j;
@@ -457,65 +459,72 @@ pub(crate) fn evaluate(
         let da_dtilt = m_in * cf;
         let da_dskew = -u * sf - e_t * cf;
         let w = V3::x() * y[o + 8] + e_r * y[o + 9] + e_t * y[o + 10];
-        let roller_point_velocity = |q: &V3| vel + w.cross(&(q - pos));
-        let centre = pos - a * c.cm;
-        let mut f = V3::zeros();
-        let mut m = V3::zeros();
-        let mut rec = RollerRecord {
-            tilt_axis: e_t * cf + u * sf,
-            skew_axis: m_in,
-            ..RollerRecord::default()
-        };
         let dd = c.dd_half[j];
-        let cup_gap = |q: &V3| {
-            let mut lobe = 0.0;
-            if c.lobes > 0 {
-                let psi_q = q[2].atan2(q[1]);
-                lobe = 0.5 * c.waveform * (1.0 - (c.lobes as f64 * psi_q).cos());
-            }
-            -(c.half_clearance + lobe) * c.cos_o
+
+        // cup: fixed, the global frame
+        let cup = Race {
+            line: &c.cup,
+            pos,
+            vel,
+            w,
+            a,
+            ring_v0: V3::zeros(),
+            ring_omega: V3::zeros(),
+            pt_v0: V3::zeros(),
+            pt_omega: V3::x() * psid,
+            gap_max: -c.half_clearance * c.cos_o,
         };
-        let no_gap = |_: &V3| 0.0;
-        // the roller in the cone's frame (slice centres are affine in the station)
-        let (pos_c, a_c) = (cone.to_local(&pos), cone.rotate_to_local(&a));
-        for k in 0..c.s_cm.len() {
-            let ck = pos + a * c.s_cm[k];
-            let ck_c = pos_c + a_c * c.s_cm[k];
-            let rad = c.radius[k] + dd - c.shrink[k];
-            if let Some((fk, pk, q, pw, ext)) = raceway_slice(c, &c.cup, k, cup_gap, &ck, &a, rad, &cup, roller_point_velocity, psid) {
-                f += fk;
-                m += (pk - pos).cross(&fk);
-                rec.qo += q;
-                rec.m_cup += (pk - centre).cross(&fk);
-                tot.p_raceway += pw;
-                tot.extrapolated |= ext;
-            }
-            if let Some((fk, pk, q, pw, ext)) = raceway_slice(c, &c.cone, k, no_gap, &ck_c, &a_c, rad, &cone, roller_point_velocity, psid) {
-                f += fk;
-                m += (pk - pos).cross(&fk);
-                rec.qi += q;
-                rec.m_cone += (pk - centre).cross(&fk);
-                tot.p_raceway += pw;
-                tot.extrapolated |= ext;
-                tot.f_cone -= fk;
-                tot.m_cone += pk.cross(&(-fk));
-                tot.t_cone_raceway += (pk - cone.origin).cross(&(-fk)).dot(&axis_c);
-            }
-        }
+        let cup_sum = if c.lobes > 0 {
+            race_slices(c, &cup, dd, |q: &V3| {
+                let psi_q = q[2].atan2(q[1]);
+                let lobe = 0.5 * c.waveform * (1.0 - (c.lobes as f64 * psi_q).cos());
+                -(c.half_clearance + lobe) * c.cos_o
+            })
+        } else {
+            let gap = -c.half_clearance * c.cos_o;
+            race_slices(c, &cup, dd, |_: &V3| gap)
+        };
+        // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
+        let cone = Race {
+            line: &c.cone,
+            pos: rot_t * (pos - origin),
+            vel: rot_t * vel,
+            w: rot_t * w,
+            a: rot_t * a,
+            ring_v0: cone_vel_l,
+            ring_omega: V3::x() * inputs.speed,
+            pt_v0: x_cross_o_l * psid,
+            pt_omega: x_l * psid,
+            gap_max: 0.0,
+        };
+        let cone_sum = race_slices(c, &cone, dd, |_: &V3| 0.0);
+        let (f_cone_r, m_cone_r) = (rot * cone_sum.f, rot * cone_sum.m);
+        tot.p_raceway += cup_sum.power + cone_sum.power;
+        tot.extrapolated |= cup_sum.extrapolated | cone_sum.extrapolated;
+
         // flange: roller-end sphere on the conical rib
+        let (mut f_fl, mut m_fl, mut q_fl) = (V3::zeros(), V3::zeros(), 0.0);
         if let Some(fl) = &c.flange {
             let s_centre = pos + a * fl.s_sphere;
-            let sl = cone.to_local(&s_centre);
-            let (er, rho) = radial(&sl);
+            let sl = rot_t * (s_centre - origin);
+            let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
+            let er = if rho > 0.0 {
+                V3::new(0.0, sl[1] / rho, sl[2] / rho)
+            } else {
+                V3::new(0.0, 1.0, 0.0)
+            };
             let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
             // `reference` is the nominal contact point on the rib, the nominal sphere centre
             // lies a sphere radius from it along the normal: interference = R_s - distance.
             let delta = fl.sphere_radius - dist;
             if delta > 0.0 {
                 let (q_el, dq) = fl.hertz.load(delta);
-                let n = cone.rotate_to_global(&(V3::x() * fl.normal[0] + er * fl.normal[1]));
+                let n = rot * (V3::x() * fl.normal[0] + er * fl.normal[1]);
                 let pk = s_centre - n * fl.sphere_radius;
-                let v_rel = roller_point_velocity(&pk) - cone.velocity(&pk);
+                let lever = pk - pos;
+                let v_roller = vel + w.cross(&lever);
+                let v_ring = cone_vel + (axis_c * inputs.speed).cross(&(pk - origin));
+                let v_rel = v_roller - v_ring;
                 let vn = v_rel.dot(&n);
                 let c_damp = 2.0 * c.damping * (c.m_r * dq).sqrt();
                 let q = (q_el - c_damp * vn).max(0.0);
@@ -527,13 +536,13 @@ pub(crate) fn evaluate(
                         c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
                     } else {
                         let v_point = V3::x().cross(&pk) * psid;
-                        let ue_vec = (roller_point_velocity(&pk) - v_point + cone.velocity(&pk) - v_point) * 0.5;
+                        let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
                         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
                         let h = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q);
                         let ratio = if c.sigma > 0.0 { h / c.sigma } else { f64::INFINITY };
                         let (ea, eb, ph) = fl.hertz.ellipse(q);
                         let asperity = q * tr::flange_boundary_mu(c.flange_mu0, ratio) / (vs * vs + V_EPS * V_EPS).sqrt();
-                        let viscous = tr::flange_viscous_traction(c.eta0, vs, h, ea, eb, ph) / vs;
+                        let viscous = tr::flange_viscous_traction_with(c.eta0, c.ln_eta0_967, vs, h, ea, eb, ph) / vs;
                         asperity + viscous
                     };
                     (-v_t * coef, coef * vs * vs)
@@ -541,51 +550,57 @@ pub(crate) fn evaluate(
                     (V3::zeros(), 0.0)
                 };
                 let fk = n * q + f_t;
-                f += fk;
-                m += (pk - pos).cross(&fk);
-                rec.qf += q;
-                rec.m_flange += (pk - centre).cross(&fk);
+                f_fl = fk;
+                m_fl = lever.cross(&fk);
+                q_fl = q;
                 tot.p_flange += p_t + damping_power;
-                tot.f_cone -= fk;
-                tot.m_cone += pk.cross(&(-fk));
-                tot.t_cone_flange += (pk - cone.origin).cross(&(-fk)).dot(&axis_c);
             }
         }
-        // cage pocket: walls at +-pocket_half from the pocket's axial plane
+
+        // Cage pocket: walls at +-pocket_half from the pocket's axial plane, per slice and
+        // wall. The gap and the velocity relative to the cage are affine in the station s and
+        // the wall side, so the sums over slices reduce to eight scalar sums per roller and a
+        // few cross products (the same forces as slice by slice).
         let psi_p = cage_psi + TAU * j as f64 / z as f64;
         let (spp, cpp) = psi_p.sin_cos();
         let e_tp = V3::new(0.0, -spp, cpp);
         let pocket_origin = cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
         let w_cage_rel = w - V3::x() * cage_rate;
-        let w_rel_spin = w_cage_rel.dot(&a);
-        // position across the pocket and velocity relative to the cage are affine in the
-        // station s along the axis: value at the centre of mass + s * rate
+        let spin_rel = w_cage_rel.dot(&a).abs();
         let tau0 = (pos - pocket_origin).dot(&e_tp);
         let tau1 = a.dot(&e_tp);
-        let v0 = roller_point_velocity(&pos) - cage_point_velocity(&pos);
+        // velocity of the roller surface relative to the cage at station s, side sigma:
+        // v0 + s v1 + sigma rad rim; tangential part (normal e_tp removed) A + s B + sigma rad C
+        let v0 = vel - (cage_vel + V3::x().cross(&(pos - cage_pos)) * cage_rate);
         let v1 = w_cage_rel.cross(&a);
-        let rim_dir = w_cage_rel.cross(&e_tp);
-        for k in 0..c.s_cm.len() {
+        let rim = w_cage_rel.cross(&e_tp);
+        let (v0e, v1e) = (v0.dot(&e_tp), v1.dot(&e_tp));
+        let va = v0 - e_tp * v0e;
+        let vb = v1 - e_tp * v1e;
+        let vc = rim - e_tp * rim.dot(&e_tp);
+        let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
+        let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
+        let l = c.slice_len;
+        let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
+        // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
+        let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
+            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for k in 0..ns {
             let sk = c.s_cm[k];
-            let ck = pos + a * sk;
             let rad = c.radius[k];
             let tau = tau0 + tau1 * sk;
-            let u_sum = w_rel_spin.abs() * rad;
-            // relative velocity at the slice centre and the rim's offset towards the walls
-            let v_centre = v0 + v1 * sk;
-            let v_rim = rim_dir * rad;
+            let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
+            let beta = 2.0 * rad * (ac + sk * bc);
+            let closing0 = v0e + v1e * sk;
             for side in [1.0_f64, -1.0] {
                 // gap to the wall on side `side` (front wall at +e_tp)
                 let gap = c.pocket_half - side * tau;
-                let pk = ck + e_tp * (side * rad);
-                let v_rel = v_centre + v_rim * side;
-                let closing = side * v_rel.dot(&e_tp);
-                let l = c.slice_len;
                 let (qn, drag) = if gap >= c.crit_gap {
-                    let qh = 2.44 * l * c.eta0 * u_sum * rad / gap;
-                    (qh, 4.58 * l * c.eta0 * u_sum * (rad / gap).sqrt())
+                    let inv = 1.0 / gap;
+                    (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
                 } else {
-                    let qh = 2.44 * l * c.eta0 * u_sum * rad / c.crit_gap;
+                    let closing = side * closing0;
+                    let qh = k_hyd * rad * rad / c.crit_gap;
                     let kappa = (1.0 - 0.026 * closing.abs().cbrt()).clamp(0.05, 1.0);
                     let lk = kappa.ln();
                     let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
@@ -595,26 +610,57 @@ pub(crate) fn evaluate(
                     tot.p_cage += ((q - q_el) * closing).max(0.0);
                     (q, c.mu_pocket * q)
                 };
-                if qn <= 0.0 && drag <= 0.0 {
-                    continue;
-                }
-                let n = -e_tp * side; // force of the wall on the roller
-                let v_t = v_rel - e_tp * v_rel.dot(&e_tp);
-                let vs = v_t.norm();
-                let f_t = if vs > 0.0 {
-                    -v_t * (drag / (vs * vs + V_EPS * V_EPS).sqrt())
-                } else {
-                    V3::zeros()
-                };
-                let fk = n * qn + f_t;
-                f += fk;
-                m += (pk - pos).cross(&fk);
-                rec.qc += qn;
-                tot.f_cage -= fk;
-                tot.m_cage -= (pk - cage_pos).cross(&fk)[0];
-                tot.p_cage += -f_t.dot(&v_t);
+                let vs2 = (alpha + side * beta).max(0.0);
+                let ct = if vs2 > 0.0 { drag / (vs2 + V_EPS * V_EPS).sqrt() } else { 0.0 };
+                s_q += side * qn;
+                s_qs += side * qn * sk;
+                q_pocket += qn;
+                s_c += ct;
+                s_cs += ct * sk;
+                s_css += ct * sk * sk;
+                s_crad += side * rad * ct;
+                s_csrad += side * sk * rad * ct;
+                s_crr += ct * rad * rad;
+                tot.p_cage += ct * vs2;
             }
         }
+        let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
+        let m_pk = -(a.cross(&e_tp) * s_qs
+            + a.cross(&va) * s_cs
+            + a.cross(&vb) * s_css
+            + a.cross(&vc) * s_csrad
+            + e_tp.cross(&va) * s_crad
+            + e_tp.cross(&vb) * s_csrad
+            + e_tp.cross(&vc) * s_crr);
+
+        // totals of the roller
+        let f = cup_sum.f + f_cone_r + f_fl + f_pk;
+        let m = cup_sum.m + m_cone_r + m_fl + m_pk;
+        // moments about the geometric centre (the centre of mass is cm along a from it)
+        let to_centre = a * c.cm;
+        let rec = RollerRecord {
+            qi: cone_sum.q,
+            qo: cup_sum.q,
+            qf: q_fl,
+            qc: q_pocket,
+            m_cone: m_cone_r + to_centre.cross(&f_cone_r),
+            m_cup: cup_sum.m + to_centre.cross(&cup_sum.f),
+            m_flange: m_fl + to_centre.cross(&f_fl),
+            tilt_axis: e_t * cf + u * sf,
+            skew_axis: m_in,
+            f_cone: -(f_cone_r + f_fl),
+            f_cage: -f_pk,
+            m_cage: -((pos - cage_pos).cross(&f_pk) + m_pk)[0],
+        };
+        // on the cone: force, moment about the origin and about its own axis
+        let f_on_cone = rec.f_cone;
+        let m_on_cone_pos = -(m_cone_r + m_fl); // about the roller's centre of mass
+        tot.f_cone += f_on_cone;
+        tot.m_cone += m_on_cone_pos + pos.cross(&f_on_cone);
+        tot.t_cone_raceway += (-m_cone_r - (pos - origin).cross(&f_cone_r)).dot(&axis_c);
+        tot.t_cone_flange += (-m_fl - (pos - origin).cross(&f_fl)).dot(&axis_c);
+        tot.f_cage += rec.f_cage;
+        tot.m_cage += rec.m_cage;
         records[j] = rec;
 
         if let Some(dy) = dy.as_deref_mut() {

@@ -78,6 +78,12 @@ pub(crate) struct RollerRecord {
     /// Tilt axis and skew axis of the roller now.
     pub tilt_axis: V3,
     pub skew_axis: V3,
+    /// Force of the roller on the cone (raceway and flange), on the cage (pocket), and its
+    /// moment on the cage about the bearing axis: the roller's share of the cone and cage
+    /// equations (the block Jacobian separates the rollers with them).
+    pub f_cone: V3,
+    pub f_cage: V3,
+    pub m_cage: f64,
 }
 
 /// Totals of one evaluation.

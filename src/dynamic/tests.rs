@@ -437,3 +437,217 @@ fn rhs_cost() {
     }
     println!("{n} rhs: {:?} per rhs, dy[20] = {}", t0.elapsed() / n as u32, dy[20]);
 }
+
+/// Eigenvalues of the finite-difference Jacobian at the initial state (exploration).
+#[test]
+#[ignore]
+fn explore_spectrum() {
+    let b = Bearing::default_preset();
+    let mut p = crate::model::Parameters::from_bearing(&b);
+    p.fidelity = crate::model::Fidelity::Dynamic;
+    if let Ok(v) = std::env::var("SLICES") {
+        p.slices = v.parse().unwrap();
+    }
+    let mut i = crate::model::Inputs::from_bearing(&b);
+    if let Ok(v) = std::env::var("FY") {
+        i.fy = v.parse().unwrap();
+    }
+    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
+    let mut out = Outputs::new(b.roller_count);
+    let mut x = Vec::new();
+    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+    let mut d = super::Dynamic::new(&b, &p).unwrap();
+    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let n = st.y.len();
+    let mut f0 = vec![0.0; n];
+    d.rhs(&i, &st.y, &mut f0);
+    let mut j = nalgebra::DMatrix::<f64>::zeros(n, n);
+    let mut y = st.y.clone();
+    let mut f1 = vec![0.0; n];
+    let mut f2 = vec![0.0; n];
+    let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0, n);
+    for c in 0..n {
+        let e = 1e-6 * st.y[c].abs().max(atol[c] / d.p.tolerance);
+        y[c] = st.y[c] + e;
+        d.rhs(&i, &y, &mut f1);
+        y[c] = st.y[c] - e;
+        d.rhs(&i, &y, &mut f2);
+        y[c] = st.y[c];
+        for r in 0..n {
+            j[(r, c)] = (f1[r] - f2[r]) / (2.0 * e);
+        }
+    }
+    let ev = j.clone().complex_eigenvalues();
+    let mut v: Vec<_> = ev.iter().cloned().collect();
+    v.sort_by(|a, b| b.norm().partial_cmp(&a.norm()).unwrap());
+    for e in v.iter().take(60).chain(v.iter().skip(v.len() - 30)) {
+        println!("{:12.4e} {:12.4e}  |{:.3e}|", e.re, e.im, e.norm());
+    }
+    for dec in 0..7 {
+        let sel: Vec<_> = v
+            .iter()
+            .filter(|e| e.norm() >= 10f64.powi(dec) && e.norm() < 10f64.powi(dec + 1))
+            .collect();
+        let maxre = sel.iter().map(|e| e.re).fold(f64::NEG_INFINITY, f64::max);
+        let minre = sel.iter().map(|e| e.re).fold(f64::INFINITY, f64::min);
+        println!("decade 1e{dec}: {} eigenvalues, re in [{minre:.3e}, {maxre:.3e}]", sel.len());
+        if dec >= 3 {
+            for e in sel.iter().step_by(2).take(12) {
+                println!("     {:12.4e} {:12.4e}", e.re, e.im);
+            }
+        }
+    }
+    let pos: Vec<_> = v.iter().filter(|e| e.re > 1.0).collect();
+    println!("positive real parts: {}", pos.len());
+    for e in pos.iter().take(20) {
+        println!("  + {:12.4e} {:12.4e}", e.re, e.im);
+    }
+    // roller 0 block
+    let o = 12;
+    for r in 0..11 {
+        let row: Vec<String> = (0..11).map(|c| format!("{:9.1e}", j[(o + r, o + c)])).collect();
+        println!("{}", row.join(" "));
+    }
+}
+
+/// Right-hand sides and outputs at a set of states, written to (SNAP_WRITE=1) or compared
+/// with /tmp/trb_snap: a check that a rewrite of the right-hand side changes it only by rounding.
+#[test]
+#[ignore]
+fn rhs_snapshot() {
+    use crate::model::{Fidelity, Inputs, Parameters};
+    let dir = std::path::Path::new("/tmp/trb_snap");
+    let write = std::env::var("SNAP_WRITE").is_ok();
+    std::fs::create_dir_all(dir).unwrap();
+    type Setup = fn(&mut Parameters, &mut Inputs);
+    let cases: Vec<(&str, &str, Setup)> = vec![
+        ("w25", "TRB130x230", |_, _| {}),
+        ("combined", "TRB130x230", |_, i| {
+            i.fy = 10e3;
+            i.xi = 0.004_f64.to_radians();
+        }),
+        ("light_rest", "TRB130x230", |p, i| {
+            p.start_from_rest = true;
+            i.fx = 2e3;
+            i.fy = 1e3;
+        }),
+        ("dry", "TRB130x230", |p, i| {
+            p.lubrication = crate::model::Lubrication::Dry;
+            i.fy = 5e3;
+        }),
+        ("kinematic_cage", "TRB130x230", |p, i| {
+            p.cage_dynamic = false;
+            i.fy = 5e3;
+            i.zeta = 0.002_f64.to_radians();
+        }),
+        ("d19", "32018X", |_, _| {}),
+    ];
+    let mut worst: f64 = 0.0;
+    for (name, preset, setup) in cases {
+        let b = Bearing::preset(preset).unwrap();
+        let mut p = Parameters::from_bearing(&b);
+        p.fidelity = Fidelity::Dynamic;
+        let mut i = Inputs::from_bearing(&b);
+        setup(&mut p, &mut i);
+        let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
+        let mut out = Outputs::new(b.roller_count);
+        let mut x = Vec::new();
+        qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+        let mut d = super::Dynamic::new(&b, &p).unwrap();
+        let mut st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+        for t_end in [0.0, 1e-3] {
+            if name == "d19" && t_end > 0.0 {
+                continue; // dry at 60 rpm: very stiff, slow to advance
+            }
+            let file = dir.join(format!("{name}_{t_end}.txt"));
+            let y: Vec<f64> = if write {
+                if t_end > 0.0 {
+                    d.advance(&mut st, &i, t_end).unwrap();
+                }
+                st.y.clone()
+            } else {
+                let text = std::fs::read_to_string(&file).unwrap();
+                text.lines()
+                    .next()
+                    .unwrap()
+                    .split(' ')
+                    .map(|v| f64::from_bits(v.parse().unwrap()))
+                    .collect()
+            };
+            let mut dy = vec![0.0; y.len()];
+            d.rhs(&i, &y, &mut dy);
+            let s2 = super::DynamicState {
+                y: y.clone(),
+                ..st.clone()
+            };
+            d.write_outputs(&s2, &i, &mut out);
+            let mut vals = dy.clone();
+            for v in [
+                &out.qi, &out.qo, &out.qf, &out.qc, &out.nit, &out.not, &out.nft, &out.nis, &out.nos, &out.nfs,
+            ] {
+                vals.extend_from_slice(v);
+            }
+            vals.extend_from_slice(&[
+                out.friction_torque,
+                out.power_loss,
+                out.reaction_fx,
+                out.reaction_my,
+                out.reaction_mz,
+            ]);
+            if write {
+                let line = |v: &[f64]| v.iter().map(|x| x.to_bits().to_string()).collect::<Vec<_>>().join(" ");
+                std::fs::write(&file, format!("{}\n{}\n", line(&y), line(&vals))).unwrap();
+            } else {
+                let text = std::fs::read_to_string(&file).unwrap();
+                let old: Vec<f64> = text
+                    .lines()
+                    .nth(1)
+                    .unwrap()
+                    .split(' ')
+                    .map(|v| f64::from_bits(v.parse().unwrap()))
+                    .collect();
+                // relative to the largest magnitude within each group of the same kind
+                let n = y.len();
+                let mut case_worst: f64 = 0.0;
+                let mut at = 0;
+                let zc = b.roller_count;
+                for (k, (a, bo)) in vals.iter().zip(&old).enumerate() {
+                    let scale = if k < 12 {
+                        // cone and cage rows: sums of large opposing roller forces; scale by
+                        // the largest roller acceleration of the same kind times m_r / m_cone
+                        let kind = 12 + if k % 6 < 3 { 3 } else { 4 };
+                        (0..n)
+                            .filter(|&m| m >= 12 && 12 + (m - 12) % super::PER_ROLLER == kind)
+                            .map(|m| old[m].abs())
+                            .fold(0.0, f64::max)
+                            * (d.g.roller_mass / d.p.cone_mass).max(1e-3)
+                    } else if k < n {
+                        // derivative rows: scale by the largest |dy| of the same state kind
+                        let kind = if k < 12 { k } else { 12 + (k - 12) % super::PER_ROLLER };
+                        (0..n)
+                            .filter(|&m| (if m < 12 { m } else { 12 + (m - 12) % super::PER_ROLLER }) == kind)
+                            .map(|m| old[m].abs())
+                            .fold(0.0, f64::max)
+                    } else {
+                        let g = (k - n) / zc;
+                        let lo = n + g * zc;
+                        old[lo..(lo + zc).min(old.len())].iter().map(|v| v.abs()).fold(0.0, f64::max)
+                    };
+                    let e = (a - bo).abs() / scale.max(1e-300);
+                    if e > case_worst {
+                        case_worst = e;
+                        at = k;
+                    }
+                }
+                println!(
+                    "{name} t={t_end}: worst relative difference {case_worst:.3e} at {at} ({} vs {})",
+                    vals[at], old[at]
+                );
+                worst = worst.max(case_worst);
+            }
+        }
+    }
+    if !write {
+        println!("worst {worst:.3e}");
+    }
+}
