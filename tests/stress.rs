@@ -25,10 +25,11 @@ const KNOWN: &[(&str, &str)] = &[
     ("32018X/unloaded/too little axial force (Fa = 0.6 Fr tan a)", "does not say why"),
     ("32008/unloaded/too little axial force (Fa = 0.6 Fr tan a)", "does not say why"),
     // F3: slices = 1 (allowed by the parameter's range) has no equilibrium on a tapered
-    // bearing, even at the preset's own operating point.
-    ("TRB130x230/slices/1 slices", "unexpected refusal"),
-    ("32018X/slices/1 slices", "unexpected refusal"),
-    ("32008/slices/1 slices", "unexpected refusal"),
+    // bearing, even at the preset's own operating point, and the message does not say why
+    // (refusing slices = 1 by the parameter's range, naming it, is fine).
+    ("TRB130x230/slices/1 slices", "does not say why"),
+    ("32018X/slices/1 slices", "does not say why"),
+    ("32008/slices/1 slices", "does not say why"),
     // F4: clearance = +5 % D is accepted, but seating the cone then needs an axial shift
     // (c/2)/tan(a_o) beyond the solver's displacement limit (5 % D).
     ("TRB130x230/parameters/clearance = +5 % D", "unexpected refusal"),
@@ -87,13 +88,13 @@ fn fidelity_1_cases_are_listed_and_run_without_failure() {
     assert!(f1
         .iter()
         .all(|c| c.params.first() == Some(&("fidelity", matrix::Value::Integer(1)))));
-    // One case per preset: fidelity 1 reports 'not available' until the dynamic model lands,
-    // then it must neither crash nor emit NaN (the full list, with all checks, runs with
-    // `stress --fidelity 1`).
+    // One step of one case on the smallest preset must neither crash nor emit NaN: the
+    // dynamic model is costly in stiff and fast cases (docs/robustness.md, "What is left");
+    // the full list, with all checks, runs with `stress --fidelity 1`.
     let presets = matrix::presets();
-    let mut seen = std::collections::HashSet::new();
-    for c in f1.iter().filter(|c| c.id.ends_with("load-combined/0.1C0") && seen.insert(c.preset)) {
-        let r = matrix::run_on_simulation(c, &presets);
+    for c in f1.iter().filter(|c| c.id == "32008/load-combined/0.1C0") {
+        let c = matrix::Case { steps: 1, ..c.clone() };
+        let r = matrix::run_on_simulation(&c, &presets);
         let crashed = |why: &str| why.contains("panic") || why.contains("non-finite");
         assert!(
             !matches!(&r.outcome, matrix::Outcome::Failed { reason } if crashed(reason)),
