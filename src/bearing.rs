@@ -678,8 +678,14 @@ impl BearingFile {
             return Err(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
         }
         let s = &self.solver;
-        if s.slices < 1 || s.slices > 200 {
-            return Err(err("solver.slices", format!("must be an integer in [1, 200], got {}", s.slices)));
+        if s.slices < 2 || s.slices > 200 {
+            return Err(err(
+                "solver.slices",
+                format!(
+                    "must be an integer in [2, 200] (one slice gives a roller no tilt stiffness), got {}",
+                    s.slices
+                ),
+            ));
         }
         let tolerance = in_range("solver.tolerance", s.tolerance, 1e-14, 0.1)?;
         let op = &self.operating_point;

@@ -55,7 +55,8 @@ pub struct Parameters {
     pub centrifugal: bool,
     /// Diameter deviation of each roller (m), one per roller.
     pub roller_dd: Vec<f64>,
-    /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4)).
+    /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4), 1 = Gill + Milne-Hamming
+    /// at the fixed step `max_step`, 2 = Rosenbrock-W ROS34PW2 with the block Jacobian).
     pub integrator: u32,
     /// Dynamic model: 3-DOF cage (radial translations and rotation) driven by its contacts;
     /// false: kinematic cage centred at the mean roller orbit.
@@ -120,8 +121,14 @@ impl Parameters {
             })
         };
         let d = b.roller_mean_diameter;
-        if self.slices < 1 || self.slices > 200 {
-            return bad("slices", format!("must be in [1, 200], got {}", self.slices));
+        if self.slices < 2 || self.slices > 200 {
+            return bad(
+                "slices",
+                format!(
+                    "must be in [2, 200] (one slice gives a roller no tilt stiffness), got {}",
+                    self.slices
+                ),
+            );
         }
         if !(self.tolerance.is_finite() && self.tolerance >= 1e-14 && self.tolerance <= 0.1) {
             return bad("tolerance", format!("must be in [1e-14, 0.1], got {}", self.tolerance));
@@ -191,10 +198,13 @@ impl Parameters {
                 );
             }
         }
-        if self.integrator > 0 {
+        if self.integrator > 2 {
             return bad(
                 "integrator",
-                format!("must be 0 (adaptive Dormand-Prince 5(4)), got {}", self.integrator),
+                format!(
+                    "must be 0 (adaptive Dormand-Prince 5(4)), 1 (Gill + Milne-Hamming, fixed step maxStep) or 2 (Rosenbrock-W ROS34PW2), got {}",
+                    self.integrator
+                ),
             );
         }
         if !(self.contact_damping.is_finite() && (0.0..=1.0).contains(&self.contact_damping)) {

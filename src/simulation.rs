@@ -80,6 +80,11 @@ pub struct Simulation {
     bearing: Bearing,
     state: State,
     model: Option<Model>,
+    /// The solve for the current inputs and parameters failed with this error: reading
+    /// outputs again returns it instead of solving again (cleared by any change).
+    failure: Option<ModelError>,
+    /// The outputs before the current solve, restored if the solve produced non-finite values.
+    backup: Outputs,
 }
 
 /// Magic and version of the serialized state format.
@@ -110,6 +115,8 @@ impl Simulation {
                 dynamic: None,
             },
             model: None,
+            failure: None,
+            backup: Outputs::new(z),
         }
     }
 
@@ -145,12 +152,14 @@ impl Simulation {
         self.state.dirty = true;
         self.state.dynamic = None;
         self.model = None;
+        self.failure = None;
         self.solve_if_dirty()
     }
 
     /// Advance from `t` to `t + h` with the inputs held, then solve at `t + h`.
     /// The caller (FMI adapter) checks that `t` matches the current time.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
+        self.failure = None;
         self.state.inputs.validate(&self.bearing)?;
         self.ensure_model()?;
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
@@ -202,9 +211,21 @@ impl Simulation {
         if !self.state.dirty {
             return Ok(self.state.report);
         }
+        if let Some(e) = &self.failure {
+            return Err(e.clone());
+        }
+        let result = self.solve_now();
+        if let Err(e) = &result {
+            self.failure = Some(e.clone());
+        }
+        result
+    }
+
+    fn solve_now(&mut self) -> Result<SolveReport, ModelError> {
         self.state.inputs.validate(&self.bearing)?;
         self.ensure_model()?;
         let z = self.bearing.roller_count;
+        self.backup.clone_from(&self.state.outputs);
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
             Model::QuasiStatic(m) => {
@@ -225,12 +246,23 @@ impl Simulation {
                 report
             }
         };
+        if !st.outputs.all_finite() {
+            // Nothing that is not finite ever leaves the element: keep the last valid outputs.
+            st.outputs.clone_from(&self.backup);
+            return Err(ModelError::NoEquilibrium {
+                message: format!(
+                    "the model produced non-finite outputs at t = {} (Fx = {}, Fy = {}, Fz = {}, speed = {}); the last valid outputs are kept; the inputs are outside the model's numerical range",
+                    st.time, st.inputs.fx, st.inputs.fy, st.inputs.fz, st.inputs.speed
+                ),
+            });
+        }
         st.report = report;
         st.dirty = false;
         Ok(report)
     }
 
     fn parameter_changed(&mut self) {
+        self.failure = None;
         self.model = None;
         self.state.dynamic = None;
         self.state.warm_start.clear();
@@ -387,6 +419,7 @@ impl Simulation {
                 self.parameter_changed();
             } else {
                 self.state.dirty = true;
+                self.failure = None;
             }
         }
         Ok(())
@@ -535,6 +568,7 @@ impl Simulation {
         }
         let same_params = s.state.params == self.state.params;
         self.state = s.state;
+        self.failure = None;
         if !same_params {
             self.model = None;
         }

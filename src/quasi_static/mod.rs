@@ -887,7 +887,7 @@ impl QuasiStatic {
         let mut iterations = 0;
         let mut history = [0.0_f64; 4];
         let mut extrapolated = self.evals.iter().any(|e| e.extrapolated);
-        let limit = 0.05 * 2.0 * self.geometry.mean_radius;
+        let limit = self.runaway_limit();
         loop {
             if max_r <= tol * f_ref {
                 return Ok(SolveReport {
@@ -956,35 +956,71 @@ impl QuasiStatic {
         Err(self.explain_failure(x, inputs, max_r / f_ref, iterations))
     }
 
+    /// Largest displacement the solver accepts before it declares a runaway: 5 % of the roller
+    /// diameter, plus the axial travel a positive clearance needs to seat a tapered cone.
+    fn runaway_limit(&self) -> f64 {
+        let g = &self.geometry;
+        let seat = if g.axial && self.params.clearance > 0.0 {
+            0.5 * self.params.clearance / g.cup_angle.tan()
+        } else {
+            0.0
+        };
+        0.05 * 2.0 * g.mean_radius + seat
+    }
+
+    /// The axial force below which the rollers' centrifugal force, resting on cup and flange,
+    /// pushes the cone out (force triangle Qo n_o + Qf n_f + Fc e_r = 0; the flange pushes the
+    /// cone back by Qf sin a_f per roller).
+    fn seating_force(&self, speed: f64) -> f64 {
+        let g = &self.geometry;
+        let (fc, _, _) = self.inertial_loads(speed);
+        match (&g.flange, g.axial) {
+            (Some(f), true) if fc > 0.0 => {
+                let (no, nf) = (g.cup.normal, f.normal);
+                let m = nalgebra::Matrix2::new(no[0], nf[0], no[1], nf[1]);
+                m.try_inverse()
+                    .map(|mi| (mi * Vector2::new(0.0, -fc))[1].max(0.0) * nf[0] * g.z as f64)
+                    .unwrap_or(0.0)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Why no equilibrium was found, in the user's terms (always with a reason after "; ").
     fn explain_failure(&self, x: &[f64], inputs: &Inputs, residual: f64, iterations: u32) -> ModelError {
         let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
         let g = &self.geometry;
-        let limit = 0.05 * 2.0 * g.mean_radius;
+        let limit = self.runaway_limit();
         let runaway = x.iter().any(|v| !v.is_finite() || v.abs() > limit);
         let mut message = format!(
             "Newton solver stopped after {iterations} iterations with relative residual {residual:.3e} (Fx = {:.6} N, Fr = {:.6} N, speed = {:.6} rad/s)",
             inputs.fx, fr, inputs.speed
         );
-        let (fc, _, _) = self.inertial_loads(inputs.speed);
-        if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.0 && fr == 0.0 && fc > 0.0 {
+        let force_preload = g.axial && self.params.preload == Preload::Force;
+        let seat = self.seating_force(inputs.speed);
+        let tan_o = g.cup_angle.tan();
+        if force_preload && inputs.fx <= seat * 1.05 && fr <= inputs.fx.max(0.0) / tan_o {
             message.push_str(&format!(
-                "; the bearing is not seated: with Fx = {:.1} N the rollers' centrifugal force ({:.3} N each) pushes the cone out through the flange; a tapered roller bearing running at speed needs a minimum axial load",
-                inputs.fx, fc
-            ));
-        } else if g.axial && self.params.preload == Preload::Force && inputs.fx <= 0.5 * fr * g.cup_angle.tan() {
-            message.push_str(&format!(
-                "; a single tapered roller bearing needs an axial force of the order of Fr tan(cup angle) = {:.1} N to carry a radial load, and Fx = {:.1} N does not seat it",
-                fr * g.cup_angle.tan(),
+                "; the bearing is not seated: at this speed the rollers' centrifugal force pushes the cone out through the flange with about {seat:.1} N, and Fx = {:.1} N does not hold it; a tapered roller bearing running at speed needs a minimum axial load",
                 inputs.fx
             ));
+        } else if force_preload && inputs.fx < fr * tan_o + seat {
+            message.push_str(&format!(
+                "; a single tapered roller bearing needs an axial force of the order of Fr tan(cup angle) = {:.1} N (plus about {seat:.1} N against the rollers' centrifugal force at this speed) to carry a radial load, and Fx = {:.1} N does not seat it",
+                fr * tan_o,
+                inputs.fx
+            ));
+        } else if g.axial && self.params.preload == Preload::Displacement && inputs.axial_displacement <= 0.0 && fr > 0.0 {
+            message.push_str("; with axial displacement preload <= 0 the cone is not seated");
         } else if runaway {
             message.push_str(&format!(
-                "; displacements exceeded {:.3e} m (5 % of the roller diameter): the load is beyond the model's range",
-                limit
+                "; displacements exceeded {limit:.3e} m (5 % of the roller diameter, plus the seating travel of the clearance): the load is beyond the model's range"
             ));
-        }
-        if g.axial && self.params.preload == Preload::Displacement && inputs.axial_displacement <= 0.0 && fr > 0.0 {
-            message.push_str("; with axial displacement preload <= 0 the cone is not seated");
+        } else {
+            message.push_str(&format!(
+                "; the solver stalled {} equilibrium: the contact state keeps switching between iterations, as at extreme shaft deflections, deep or many lobes, or very few slices; more slices or smaller input steps per communication step may help",
+                if residual < 1e-2 { "close to" } else { "away from" }
+            ));
         }
         ModelError::NoEquilibrium { message }
     }
