@@ -673,9 +673,17 @@ impl QuasiStatic {
             let sol = m.try_inverse()? * rhs;
             let (qi, qf) = (sol[0].max(0.0), sol[1].max(0.0));
             let di = g.cone.law.deflection(mid, qi / s);
-            let dol = g.cup.law.deflection(mid, qo / s);
+            // the cup sits (c/2 + mean lobe depth) cos a_o further out: the roller must travel
+            // that far before it deflects the cup
+            let mean_lobe = if self.params.outer_lobes > 0 {
+                0.5 * self.params.outer_waveform
+            } else {
+                0.0
+            };
+            let cup_gap = (0.5 * self.params.clearance + mean_lobe) * g.cup_angle.cos();
+            let dol = g.cup.law.deflection(mid, qo / s) + cup_gap;
             let dfl = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
-            // dol = -(a no_x + rho no_r); di = (dx - a) ni_x - rho ni_r; dfl = (dx - a) nf_x - rho nf_r
+            // dol = -(a no_x + rho no_r) (+ the gap); di = (dx - a) ni_x - rho ni_r; dfl = (dx - a) nf_x - rho nf_r
             let mm = Matrix3::new(-no[0], -no[1], 0.0, -ni[0], -ni[1], ni[0], -nf[0], -nf[1], nf[0]);
             let v = mm.try_inverse()? * Vector3::new(dol, di, dfl);
             Some([v[0], v[1], v[2]])
