@@ -644,7 +644,7 @@ fn y22_section(w: &Writer) -> Result<String, CliError> {
             title: "mounting clearance",
             x_label: "clearance (um)",
             file: "y22_vs_clearance.svg",
-            xs: (0..=24).map(|k| -20.0 + k as f64).collect(),
+            xs: (0..=30).map(|k| -20.0 + k as f64).collect(),
             run: |s, x| y22(s, x * 1e-6, Y22_WAVEFORM, Y22_FY, Y22_RPM),
         },
         Sweep {
