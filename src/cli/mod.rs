@@ -18,8 +18,9 @@ pub mod package;
 pub mod paths;
 pub mod scenario;
 pub mod simulate;
-pub mod study;
 pub mod stress;
+pub mod study;
+pub mod svg;
 
 /// Tapered roller bearing element: package the FMI 2.0 Co-Simulation FMU, or run a scenario
 /// with the same model code without FMI.

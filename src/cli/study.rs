@@ -4,13 +4,12 @@
 //! `all` writes `docs/results-studies.md` and `docs/figures/*.svg`; a single study prints
 //! its section to stdout and writes its figures.
 
-mod svg;
 mod w25;
 
+use super::svg::{self, Series};
 use super::CliError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use svg::Series;
 use trb::model::{ModelError, Outputs};
 use trb::quasi_static::studies::*;
 

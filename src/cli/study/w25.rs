@@ -6,10 +6,10 @@
 //! skew against time; polar contact-load distributions; and the comparison with the study's
 //! stated trends (MODEL.md section 8).
 
-use super::svg::{self, Series};
 use super::{f, table, Writer};
 use crate::cli::scenario::Scenario;
 use crate::cli::simulate::prepare;
+use crate::cli::svg::{self, Series};
 use crate::cli::CliError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -1,5 +1,6 @@
-//! Minimal SVG charts for the study figures, written by hand (no fonts or C libraries needed):
-//! x-y line charts with markers and a legend, and polar charts of per-roller loads.
+//! Minimal SVG charts for the study and benchmark figures, written by hand (no fonts or C
+//! libraries needed): x-y line charts (linear or logarithmic axes) with markers and a legend,
+//! and polar charts of per-roller loads.
 
 use std::fmt::Write as _;
 
@@ -87,9 +88,38 @@ fn legend(out: &mut String, names: &[&str]) {
     }
 }
 
+/// Ticks of an axis over [v0, v1] (transformed coordinates): 1, 2, 5 per decade on a log axis
+/// (values, with the decade below as the formatting step), a nice step otherwise.
+fn axis_ticks(v0: f64, v1: f64, log: bool, step: f64) -> Vec<(f64, f64)> {
+    let mut ticks = Vec::new();
+    if log {
+        for k in (v0.floor() as i32)..=(v1.ceil() as i32) {
+            for m in [1.0, 2.0, 5.0] {
+                let v = m * 10f64.powi(k);
+                if v.log10() >= v0 - 1e-9 && v.log10() <= v1 + 1e-9 {
+                    ticks.push((v, v / 10.0));
+                }
+            }
+        }
+    } else {
+        let mut v = (v0 / step).ceil() * step;
+        while v <= v1 + 1e-9 * step.abs() {
+            ticks.push((v, step));
+            v += step;
+        }
+    }
+    ticks
+}
+
 /// An x-y chart; `log_x` plots x on a logarithmic axis (x > 0).
 pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x: bool) -> String {
+    chart(title, x_label, y_label, series, log_x, false)
+}
+
+/// An x-y chart with either axis linear or logarithmic (values > 0 on a log axis).
+pub fn chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x: bool, log_y: bool) -> String {
     let tx = |x: f64| if log_x { x.max(1e-300).log10() } else { x };
+    let ty = |y: f64| if log_y { y.max(1e-300).log10() } else { y };
     let pts = series
         .iter()
         .flat_map(|s| s.points.iter())
@@ -98,13 +128,17 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], 
     for p in pts {
         x0 = x0.min(tx(p.0));
         x1 = x1.max(tx(p.0));
-        y0 = y0.min(p.1);
-        y1 = y1.max(p.1);
+        y0 = y0.min(ty(p.1));
+        y1 = y1.max(ty(p.1));
     }
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
-    y0 = y0.min(0.0);
+    if log_y {
+        (y0, y1) = (y0.floor(), y1.ceil());
+    } else {
+        y0 = y0.min(0.0);
+    }
     if y1 <= y0 {
         y1 = y0 + 1.0;
     }
@@ -112,16 +146,28 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], 
         x1 = x0 + 1.0;
     }
     let ystep = nice_step(y1 - y0, 5.0);
-    y0 = (y0 / ystep).floor() * ystep;
-    y1 = (y1 / ystep).ceil() * ystep;
+    if !log_y {
+        y0 = (y0 / ystep).floor() * ystep;
+        y1 = (y1 / ystep).ceil() * ystep;
+    }
     let (pw, ph) = (W - LEFT - RIGHT, H - TOP - BOTTOM);
     let px = |x: f64| LEFT + (tx(x) - x0) / (x1 - x0) * pw;
-    let py = |y: f64| TOP + ph - (y - y0) / (y1 - y0) * ph;
+    let py = |y: f64| TOP + ph - (ty(y) - y0) / (y1 - y0) * ph;
     let mut out = String::new();
     header(&mut out, title);
     // grid and ticks
-    let mut y = y0;
-    while y <= y1 + 0.5 * ystep {
+    let yticks = if log_y {
+        axis_ticks(y0, y1, true, ystep)
+    } else {
+        let mut v = Vec::new();
+        let mut y = y0;
+        while y <= y1 + 0.5 * ystep {
+            v.push((y, ystep));
+            y += ystep;
+        }
+        v
+    };
+    for (y, step) in yticks {
         let yy = py(y);
         let _ = writeln!(
             out,
@@ -129,29 +175,10 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], 
             LEFT + pw,
             LEFT - 6.0,
             yy + 4.0,
-            fmt_tick(y, ystep)
+            fmt_tick(y, step)
         );
-        y += ystep;
     }
-    // x ticks: 1, 2, 5 per decade on a log axis, a nice step otherwise.
-    let mut ticks: Vec<(f64, f64)> = Vec::new();
-    if log_x {
-        for k in (x0.floor() as i32)..=(x1.ceil() as i32) {
-            for m in [1.0, 2.0, 5.0] {
-                let v = m * 10f64.powi(k);
-                if v.log10() >= x0 - 1e-9 && v.log10() <= x1 + 1e-9 {
-                    ticks.push((v, v / 10.0));
-                }
-            }
-        }
-    } else {
-        let xstep = nice_step(x1 - x0, 6.0);
-        let mut x = (x0 / xstep).ceil() * xstep;
-        while x <= x1 + 1e-9 * xstep.abs() {
-            ticks.push((x, xstep));
-            x += xstep;
-        }
-    }
+    let ticks = axis_ticks(x0, x1, log_x, nice_step(x1 - x0, 6.0));
     for (x, step) in ticks {
         let xx = px(x);
         let _ = writeln!(
@@ -278,6 +305,7 @@ mod tests {
         for svg in [
             line_chart("t", "x", "y", &s, true),
             line_chart("t", "x", "y", &s, false),
+            chart("t", "x", "y", &s, true, true),
             polar_chart("p", "N", &s),
         ] {
             assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
