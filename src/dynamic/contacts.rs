@@ -214,6 +214,24 @@ impl Constants {
     }
 }
 
+/// Roller `rec`'s share of the global rows of the right-hand side (cone and cage
+/// accelerations), in the order of the state vector's first `ROLLERS` entries.
+pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) {
+    out.iter_mut().for_each(|v| *v = 0.0);
+    out[CONE + 3] = if c.displacement_preload || !c.axial {
+        0.0
+    } else {
+        rec.f_cone[0] / c.m_cone
+    };
+    out[CONE + 4] = rec.f_cone[1] / c.m_cone;
+    out[CONE + 5] = rec.f_cone[2] / c.m_cone;
+    if c.cage_dynamic {
+        out[CAGE + 3] = rec.f_cage[1] / c.m_cage;
+        out[CAGE + 4] = rec.f_cage[2] / c.m_cage;
+        out[CAGE + 5] = rec.m_cage / c.j_cage;
+    }
+}
+
 /// Cage angle (roller 1's pocket) for the state `y`.
 pub(crate) fn cage_angle(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
     if p.cage_dynamic {

@@ -44,7 +44,22 @@ const E7: f64 = -1.0 / 40.0;
 pub struct Counters {
     pub steps: u64,
     pub rejected: u64,
+    /// Right-hand-side evaluations, including those of Jacobians.
     pub rhs: u64,
+    /// Jacobians and matrix factorisations of the implicit integrator.
+    pub jacobians: u64,
+    pub factorizations: u64,
+}
+
+/// RMS over the components of the error `e` scaled by `atol_i + rtol_i max(|y_i|, |y_new_i|)`.
+pub fn error_norm(e: &[f64], y: &[f64], y_new: &[f64], atol: &[f64], rtol: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..e.len() {
+        let sc = atol[i] + rtol[i] * y[i].abs().max(y_new[i].abs());
+        let r = e[i] / sc;
+        sum += r * r;
+    }
+    (sum / e.len() as f64).sqrt()
 }
 
 /// Why integration stopped early.

@@ -32,13 +32,19 @@
 
 mod contacts;
 pub mod integrator;
+pub mod jacobian;
+pub mod multistep;
+pub mod rosenbrock;
 
 use crate::bearing::Bearing;
 use crate::geometry::Geometry;
 use crate::model::{Inputs, ModelError, Outputs, Parameters, Preload};
 use crate::quasi_static::QuasiStatic;
 use integrator::{Counters, Dopri5, Failure};
+use jacobian::{BlockSystem, NG};
+use multistep::MilneHamming;
 use nalgebra::{Matrix3, Vector3};
+use rosenbrock::RosenbrockW;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -62,6 +68,8 @@ pub struct DynamicState {
     /// Derivative at (t, y) from the last accepted step and the inputs it was computed with.
     pub fsal: Vec<f64>,
     pub fsal_inputs: Option<Inputs>,
+    /// Further integrator memory (Milne-Hamming history, Rosenbrock-W Jacobian); empty: none.
+    pub memory: Vec<f64>,
 }
 
 /// Per-roller results of one evaluation, for the outputs.
@@ -111,8 +119,39 @@ pub struct Dynamic {
     pub(crate) g: Geometry,
     pub(crate) p: Parameters,
     pub(crate) c: contacts::Constants,
-    ig: Dopri5,
+    ig: Integrator,
     records: Vec<RollerRecord>,
+}
+
+/// The integrator selected by the parameter `integrator`.
+#[derive(Debug, Clone)]
+enum Integrator {
+    /// 0: adaptive Dormand-Prince 5(4).
+    Dopri5(Dopri5),
+    /// 1: Gill's Runge-Kutta start, Milne-Hamming predictor-corrector at a fixed step [W25].
+    MilneHamming(MilneHamming),
+    /// 2: Rosenbrock-W ROS34PW2 with the block Jacobian.
+    Rosenbrock(Box<RosenbrockW>),
+}
+
+/// The model as the implicit integrator sees it.
+struct Model<'a> {
+    g: &'a Geometry,
+    p: &'a Parameters,
+    c: &'a contacts::Constants,
+    inputs: &'a Inputs,
+    records: &'a mut [RollerRecord],
+}
+
+impl BlockSystem for Model<'_> {
+    fn rhs(&mut self, y: &[f64], dy: &mut [f64]) {
+        contacts::evaluate(self.g, self.p, self.c, self.inputs, y, Some(dy), self.records);
+    }
+    fn shares(&self, out: &mut [f64]) {
+        for (j, r) in self.records.iter().enumerate() {
+            contacts::global_shares(self.c, r, &mut out[j * NG..(j + 1) * NG]);
+        }
+    }
 }
 
 impl Dynamic {
@@ -121,7 +160,23 @@ impl Dynamic {
         let c = contacts::Constants::new(bearing, params, &g);
         let n = ROLLERS + PER_ROLLER * g.z;
         let (atol, rtol) = tolerances(&g, &c, params, bearing.speed.abs().max(100.0), n);
-        let ig = Dopri5::new(n, atol, rtol, params.max_step);
+        let ig = match params.integrator {
+            1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step)),
+            2 => {
+                let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance).collect();
+                let moving_x = g.axial && params.preload == Preload::Force;
+                let mut active = [true; NG];
+                for (k, v) in active.iter_mut().enumerate() {
+                    *v = match k {
+                        0 | 3 => moving_x,
+                        1 | 2 | 4 | 5 => true,
+                        _ => params.cage_dynamic,
+                    };
+                }
+                Integrator::Rosenbrock(Box::new(RosenbrockW::new(g.z, atol, rtol, scale, active, params.max_step)))
+            }
+            _ => Integrator::Dopri5(Dopri5::new(n, atol, rtol, params.max_step)),
+        };
         Ok(Dynamic {
             records: vec![RollerRecord::default(); g.z],
             g,
@@ -183,6 +238,7 @@ impl Dynamic {
             counters: Counters::default(),
             fsal: Vec::new(),
             fsal_inputs: None,
+            memory: Vec::new(),
         }
     }
 
@@ -201,17 +257,49 @@ impl Dynamic {
         let this = &mut *self;
         let (g, p, c, records, inp) = (&this.g, &this.p, &this.c, &mut this.records, inputs);
         let mut t = state.t;
-        let result = this.ig.integrate(
-            |_t, y, dy| {
-                let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
-            },
-            &mut t,
-            &mut state.y,
-            t_end,
-            &mut state.h,
-            &mut state.counters,
-            &mut state.fsal,
-        );
+        let result = match &mut this.ig {
+            Integrator::Dopri5(ig) => ig.integrate(
+                |_t, y, dy| {
+                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
+                },
+                &mut t,
+                &mut state.y,
+                t_end,
+                &mut state.h,
+                &mut state.counters,
+                &mut state.fsal,
+            ),
+            Integrator::MilneHamming(ig) => ig.integrate(
+                |y, dy| {
+                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
+                },
+                &mut t,
+                &mut state.y,
+                t_end,
+                &mut state.counters,
+                &mut state.fsal,
+                &mut state.memory,
+            ),
+            Integrator::Rosenbrock(ig) => {
+                let mut model = Model {
+                    g,
+                    p,
+                    c,
+                    inputs: inp,
+                    records,
+                };
+                ig.integrate(
+                    &mut model,
+                    &mut t,
+                    &mut state.y,
+                    t_end,
+                    &mut state.h,
+                    &mut state.counters,
+                    &mut state.fsal,
+                    &mut state.memory,
+                )
+            }
+        };
         state.t = t;
         result.map_err(|f| {
             state.fsal.clear();

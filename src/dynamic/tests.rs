@@ -651,3 +651,148 @@ fn rhs_snapshot() {
         println!("worst {worst:.3e}");
     }
 }
+
+/// Integrators side by side on the [W25] case (exploration): INTEGRATORS="0:1e-6,2:1e-5,1:2e-6"
+/// (integrator:tolerance, or integrator:maxStep for 1), T (s), SLICES, FY, XI (deg).
+#[test]
+#[ignore]
+fn explore_integrators() {
+    let t_end: f64 = std::env::var("T").ok().and_then(|v| v.parse().ok()).unwrap_or(0.005);
+    let slices: i32 = std::env::var("SLICES").ok().and_then(|v| v.parse().ok()).unwrap_or(20);
+    let fy: f64 = std::env::var("FY").ok().and_then(|v| v.parse().ok()).unwrap_or(0.0);
+    let xi: f64 = std::env::var("XI").ok().and_then(|v| v.parse().ok()).unwrap_or(0.0);
+    let list = std::env::var("INTEGRATORS").unwrap_or("0:1e-8,0:1e-6,2:1e-6,2:1e-5,2:1e-4".into());
+    let h = 1e-4;
+    let steps = (t_end / h).round() as usize;
+    let mut reference: Option<Vec<(f64, f64, f64, f64)>> = None;
+    for item in list.split(',') {
+        let (ig, v) = item.split_once(':').unwrap();
+        let ig: i32 = ig.parse().unwrap();
+        let v: f64 = v.parse().unwrap();
+        let mut s = sim("TRB130x230", slices, &[(var::FY, fy), (var::XI, xi.to_radians())]);
+        s.set_integer(var::INTEGRATOR, ig).unwrap();
+        if ig == 1 {
+            s.set_real(var::MAX_STEP, v).unwrap();
+        } else {
+            s.set_real(var::TOLERANCE, v).unwrap();
+        }
+        let mut series = Vec::new();
+        let t0 = std::time::Instant::now();
+        run(&mut s, h, steps, |_, o| {
+            series.push((o.friction_torque, o.skew_mean, o.tilt_max, o.cage_speed))
+        });
+        let wall = t0.elapsed();
+        let o = s.last_outputs();
+        let err = reference.as_ref().map(|r| {
+            let rel = |f: fn(&(f64, f64, f64, f64)) -> f64| {
+                let scale = (r.iter().map(|v| f(v) * f(v)).sum::<f64>() / r.len() as f64).sqrt();
+                (r.iter().zip(&series).map(|(a, b)| (f(a) - f(b)).powi(2)).sum::<f64>() / r.len() as f64).sqrt() / scale
+            };
+            (rel(|v| v.0), rel(|v| v.1), rel(|v| v.2), rel(|v| v.3))
+        });
+        println!(
+            "integrator {ig} {v:.0e}: wall {wall:?} steps {} rhs {} rejected {} | T {:.6} skew {:.6e} tilt {:.6e} | rel rms err torque/skew/tilt/cage {:?}",
+            o.integrator_steps, o.integrator_rhs, o.integrator_rejected, o.friction_torque, o.skew_mean, o.tilt_max, err
+        );
+        if reference.is_none() {
+            reference = Some(series);
+        }
+    }
+}
+
+/// The block Jacobian from 11 + 12 colored right-hand sides equals the full finite-difference
+/// Jacobian (199 right-hand sides) on its blocks, and the rest of the full one is zero.
+#[test]
+fn block_jacobian_matches_the_full_finite_difference_jacobian() {
+    use super::jacobian::{BlockJacobian, BlockSystem, M, NG};
+    let b = Bearing::default_preset();
+    let mut p = crate::model::Parameters::from_bearing(&b);
+    p.fidelity = crate::model::Fidelity::Dynamic;
+    p.slices = 10;
+    let mut i = crate::model::Inputs::from_bearing(&b);
+    i.fy = 8e3;
+    i.xi = 0.003_f64.to_radians();
+    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
+    let mut out = Outputs::new(b.roller_count);
+    let mut x = Vec::new();
+    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+    let mut d = super::Dynamic::new(&b, &p).unwrap();
+    let mut st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    d.advance(&mut st, &i, 2e-4).unwrap();
+    let n = st.y.len();
+    let z = b.roller_count;
+    let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0, n);
+    let scale: Vec<f64> = atol.iter().map(|a| a / p.tolerance).collect();
+    let mut jac = BlockJacobian::zeros(z);
+    let mut model = super::Model {
+        g: &d.g,
+        p: &d.p,
+        c: &d.c,
+        inputs: &i,
+        records: &mut d.records,
+    };
+    let mut work = vec![0.0; 3 * n];
+    let mut shares = vec![0.0; 2 * z * NG];
+    let count = jac.compute(&mut model, &st.y, &scale, &[true; NG], &mut work, &mut shares);
+    assert_eq!(count, 1 + M as u64 + NG as u64);
+    // full Jacobian column by column, same one-sided differences
+    let mut f0 = vec![0.0; n];
+    model.rhs(&st.y, &mut f0);
+    let mut y = st.y.clone();
+    let mut f1 = vec![0.0; n];
+    let mut worst: f64 = 0.0;
+    for col in 0..n {
+        let e = f64::EPSILON.sqrt() * st.y[col].abs().max(scale[col]);
+        y[col] = st.y[col] + e;
+        let e = y[col] - st.y[col];
+        model.rhs(&y, &mut f1);
+        y[col] = st.y[col];
+        for row in 0..n {
+            let full = (f1[row] - f0[row]) / e;
+            let block = match (row < NG, col < NG) {
+                (true, true) => jac.g[row * NG + col],
+                (false, true) => {
+                    let (j, r) = ((row - NG) / M, (row - NG) % M);
+                    jac.r[j * M * NG + r * NG + col]
+                }
+                (true, false) => {
+                    let (j, c) = ((col - NG) / M, (col - NG) % M);
+                    jac.l[j * NG * M + row * M + c]
+                }
+                (false, false) => {
+                    let (jr, r) = ((row - NG) / M, (row - NG) % M);
+                    let (jc, c) = ((col - NG) / M, (col - NG) % M);
+                    if jr == jc {
+                        jac.d[jr * M * M + r * M + c]
+                    } else {
+                        0.0
+                    }
+                }
+            };
+            // relative to the row's scale of entries: |J_row| ~ |f| / state scale
+            let row_scale = f0[row].abs().max(1e-300) / scale[col].max(st.y[col].abs()) + full.abs().max(block.abs());
+            let e = (full - block).abs() / row_scale;
+            if e > worst {
+                worst = e;
+                if e > 1e-3 {
+                    println!("row {row} col {col}: full {full:.6e} block {block:.6e}");
+                }
+            }
+        }
+    }
+    assert!(worst < 1e-3, "worst relative difference {worst:.3e}");
+    // the block factorisation solves (alpha I - J) x = b
+    for h in [1e-4, 1e-6, 1e-8] {
+        let alpha = 1.0 / (h * 0.4358665215084590);
+        let mut lu = super::jacobian::BlockLu::new(z);
+        assert!(lu.factor(&jac, alpha));
+        let xs: Vec<f64> = (0..n).map(|k| scale[k] * ((k * 7919 % 13) as f64 - 6.0)).collect();
+        let mut jx = vec![0.0; n];
+        jac.apply(&xs, &mut jx);
+        let mut b: Vec<f64> = (0..n).map(|k| alpha * xs[k] - jx[k]).collect();
+        lu.solve(&mut b);
+        let err = (0..n).map(|k| ((b[k] - xs[k]) / scale[k]).abs()).fold(0.0, f64::max);
+        println!("h {h:e}: block solve error {err:.3e}");
+        assert!(err < 1e-6, "h {h}: {err}");
+    }
+}
