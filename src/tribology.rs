@@ -82,10 +82,11 @@ impl ViscosityTable {
     #[inline]
     pub fn eta(&self, p: f64) -> f64 {
         let u = p.max(0.0) / Self::STEP;
-        let k = u as usize;
-        if k + 1 >= Self::N {
+        // also catches p = +inf or NaN (u as usize would saturate or be 0)
+        if !(u < (Self::N - 1) as f64) {
             return roelands_viscosity_with(self.eta0, self.ln_eta0_967, p);
         }
+        let k = u as usize;
         let f = u - k as f64;
         fm::exp(self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k]))
     }
@@ -94,10 +95,10 @@ impl ViscosityTable {
     #[inline]
     pub fn ln_eta(&self, p: f64) -> f64 {
         let u = p.max(0.0) / Self::STEP;
-        let k = u as usize;
-        if k + 1 >= Self::N {
+        if !(u < (Self::N - 1) as f64) {
             return fm::ln(roelands_viscosity_with(self.eta0, self.ln_eta0_967, p));
         }
+        let k = u as usize;
         let f = u - k as f64;
         self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k])
     }
@@ -301,6 +302,17 @@ mod tests {
             let (a, b) = (t.eta(p), roelands_viscosity(0.033, p));
             assert!((a - b).abs() < 1e-5 * b, "{p}: {a} vs {b}");
         }
+    }
+
+    /// A diverging state (an unstable fixed-step integrator) can produce an infinite pressure:
+    /// the table must fall back to the formula, not index out of bounds.
+    #[test]
+    fn viscosity_table_survives_infinite_and_nan_pressure() {
+        let t = ViscosityTable::new(0.033);
+        assert_eq!(t.eta(f64::INFINITY), roelands_viscosity(0.033, f64::INFINITY));
+        assert!(t.ln_eta(f64::INFINITY) >= t.ln_eta(5e9));
+        assert_eq!(t.eta(f64::NAN), t.eta(0.0), "NaN pressure reads as zero");
+        assert_eq!(t.eta(f64::NEG_INFINITY), t.eta(0.0));
     }
 
     #[test]
