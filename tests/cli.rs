@@ -454,3 +454,34 @@ fn every_shipped_scenario_runs() {
         }
     }
 }
+
+/// `bench --quick` on one scenario writes the generated section (targets, speedups, one
+/// work-precision table) and its figure next to the document, keeping the hand-written text.
+#[test]
+fn bench_quick_writes_the_report_section_and_figure() {
+    let dir = Scratch::new("bench_quick");
+    let doc = dir.write("performance.md", "# Performance\n\nhand-written text\n");
+    let o = trb(&["bench", "--quick", "--filter", "w25_axial", "--out", p(&doc)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&doc).unwrap();
+    assert!(text.starts_with("# Performance\n\nhand-written text\n"), "{text}");
+    for needle in [
+        "<!-- bench:begin -->",
+        "quasi-static doStep",
+        "one right-hand side",
+        "FMU bookkeeping per doStep",
+        "Speedup over the study's method",
+        "#### w25_axial_3500rpm",
+        "Gill RK + Milne–Hamming",
+        "<!-- bench:end -->",
+    ] {
+        assert!(text.contains(needle), "no {needle:?} in {text}");
+    }
+    let svg = std::fs::read_to_string(dir.path("figures/bench_w25_axial_3500rpm.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("polyline"), "{svg}");
+    // a second run replaces the section instead of appending another
+    let o = trb(&["bench", "--quick", "--filter", "w25_axial", "--out", p(&doc)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&doc).unwrap().matches("<!-- bench:begin -->").count(), 1);
+    assert_eq!(trb(&["bench", "--repeats", "0"]).status.code(), Some(2));
+}

@@ -1,10 +1,9 @@
 //! The `trb` command line: argument definitions (clap derive) and dispatch.
 //!
 //! Every subcommand lives in its own module with an argument struct (`#[derive(clap::Args)]`)
-//! and a `run(args) -> Result<(), CliError>` function. To add a subcommand (for example
-//! `bench`): write `cli/bench.rs` with `BenchArgs` and `run`, add `pub mod bench;` below, a
-//! `Bench(bench::BenchArgs)` variant to [`Command`] and its arm in [`run`]. Nothing else
-//! needs to change.
+//! and a `run(args) -> Result<(), CliError>` function. To add a subcommand: write
+//! `cli/<name>.rs` with its arguments and `run`, add `pub mod <name>;` below, a variant to
+//! [`Command`] and its arm in [`run`]. Nothing else needs to change.
 //!
 //! Exit codes: 0 success, 1 the model or the file system failed while running, 2 the request
 //! was invalid (command line, scenario file, bearing file), as clap does for usage errors.
@@ -12,10 +11,12 @@
 use clap::{Parser, Subcommand};
 use std::fmt;
 
+pub mod bench;
 pub mod demo;
 pub mod documentation;
 pub mod package;
 pub mod paths;
+pub mod report;
 pub mod scenario;
 pub mod simulate;
 pub mod stress;
@@ -43,6 +44,8 @@ pub enum Command {
     Study(study::StudyArgs),
     /// Run the numerical stress matrix (issue 6) and update docs/robustness.md.
     Stress(stress::StressArgs),
+    /// Benchmark: work-precision of the dynamic model, kernels and targets; update docs/performance.md.
+    Bench(bench::BenchArgs),
 }
 
 /// Run the parsed command line.
@@ -53,6 +56,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Demo(args) => demo::run(args),
         Command::Study(args) => study::run(args),
         Command::Stress(args) => stress::run(args),
+        Command::Bench(args) => bench::run(args),
     }
 }
 

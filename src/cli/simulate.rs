@@ -218,7 +218,7 @@ fn run_prepared<W: Write>(
     })
 }
 
-fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Result<(), CliError> {
+pub fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Result<(), CliError> {
     for ((var, _), value) in scenario.inputs.iter().zip(u) {
         sim.set_real(var.vr, *value)
             .map_err(|e| access(&format!("inputs.{}", var.name), e))?;

@@ -6,6 +6,7 @@
 
 mod w25;
 
+use super::report::table;
 use super::svg::{self, Series};
 use super::CliError;
 use std::fmt::Write as _;
@@ -36,15 +37,6 @@ pub struct StudyArgs {
 
 fn model_err(case: &str) -> impl Fn(ModelError) -> CliError + '_ {
     move |e| CliError::failed(format!("{case}: {e}"))
-}
-
-/// A markdown table.
-fn table(head: &[&str], rows: &[Vec<String>]) -> String {
-    let mut s = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
-    for r in rows {
-        let _ = writeln!(s, "| {} |", r.join(" | "));
-    }
-    s
 }
 
 fn f(v: f64, d: usize) -> String {

@@ -6,7 +6,8 @@
 //! skew against time; polar contact-load distributions; and the comparison with the study's
 //! stated trends (MODEL.md section 8).
 
-use super::{f, table, Writer};
+use super::{f, Writer};
+use crate::cli::report::table;
 use crate::cli::scenario::Scenario;
 use crate::cli::simulate::prepare;
 use crate::cli::svg::{self, Series};

@@ -1,0 +1,45 @@
+//! Criterion benchmarks of the dynamic model's kernel (fidelity 1): one right-hand-side
+//! evaluation (all contact forces, film and traction of 17 rollers x 20 slices x 2 raceways,
+//! flanges, cage pockets and land, and the accelerations) for the default bearing at the
+//! quasi-static start state of the [W25] case and under combined load.
+//!
+//! Run: `cargo bench --bench dynamic`. The `bench` command measures the same kernel for the
+//! report in docs/performance.md.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use trb::bearing::Bearing;
+use trb::dynamic::Dynamic;
+use trb::model::{Fidelity, Inputs, Outputs, Parameters};
+use trb::quasi_static::QuasiStatic;
+
+/// One right-hand side at the quasi-static start state with radial load `fy`.
+fn rhs(fy: f64) -> impl FnMut() {
+    let b = Bearing::default_preset();
+    let mut p = Parameters::from_bearing(&b);
+    p.fidelity = Fidelity::Dynamic;
+    let mut i = Inputs::from_bearing(&b);
+    i.fy = fy;
+    let mut qs = QuasiStatic::new(&b, &p).unwrap();
+    let mut out = Outputs::new(b.roller_count);
+    let mut x = Vec::new();
+    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+    let mut d = Dynamic::new(&b, &p).unwrap();
+    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let mut dy = vec![0.0; st.y.len()];
+    move || {
+        d.rhs(&i, &st.y, &mut dy);
+        black_box(&dy);
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("dynamic_rhs");
+    let mut f = rhs(0.0);
+    g.bench_function("TRB130x230_axial_30kN_3500rpm_20slices", |b| b.iter(&mut f));
+    let mut f = rhs(25_000.0);
+    g.bench_function("TRB130x230_combined_Fy25kN_20slices", |b| b.iter(&mut f));
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,97 @@
+//! Regression guard on machine-independent work counts (issue 5): integrator steps and
+//! right-hand-side evaluations of the dynamic model, and Newton iterations of the
+//! quasi-static model, for short fixed scenarios. Wall time depends on the machine and its
+//! load; these counts depend only on the model and the algorithms, so a change that makes
+//! the integrators or the solver work harder fails here.
+//!
+//! Each baseline was recorded when the guard was written (see the git log). A count more
+//! than 10 % above its baseline fails: find the cause, or if the extra work is intended,
+//! raise the baseline in the same commit and say why. A count more than 30 % below its
+//! baseline fails too, so that an improvement lowers the baseline (or a broken integrator
+//! that skips work is noticed).
+
+use trb::bearing::Bearing;
+use trb::simulation::Simulation;
+use trb::variables as var;
+
+/// Work of `steps` communication steps of `h` for the default bearing ([W25] case, 3500 rpm,
+/// Fa 30 kN) with the given settings: (integrator steps, RHS evaluations, rejected steps).
+fn dynamic_counts(integrator: i32, setting: f64, fy: f64, steps: usize, h: f64) -> (i32, i32, i32) {
+    let mut s = Simulation::new(Bearing::default_preset());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.set_integer(var::INTEGRATOR, integrator).unwrap();
+    if integrator == 1 {
+        s.set_real(var::MAX_STEP, setting).unwrap();
+    } else {
+        s.set_real(var::TOLERANCE, setting).unwrap();
+    }
+    s.set_real(var::FY, fy).unwrap();
+    s.initialize(0.0).unwrap();
+    for k in 0..steps {
+        s.do_step(k as f64 * h, h).unwrap();
+    }
+    let o = s.last_outputs();
+    assert!(o.friction_torque.is_finite() && o.friction_torque > 0.0);
+    (o.integrator_steps, o.integrator_rhs, o.integrator_rejected)
+}
+
+fn check(what: &str, count: i32, baseline: i32) {
+    eprintln!("{what}: {count} (baseline {baseline})");
+    let (low, high) = ((baseline as f64 * 0.7).floor() as i32, (baseline as f64 * 1.1).ceil() as i32);
+    assert!(
+        count <= high,
+        "{what}: {count} exceeds the baseline {baseline} by more than 10 % (limit {high}); see tests/perf_guard.rs"
+    );
+    assert!(
+        count >= low,
+        "{what}: {count} is more than 30 % below the baseline {baseline}: lower the baseline (limit {low})"
+    );
+}
+
+#[test]
+fn dormand_prince_work_on_the_w25_case() {
+    let (steps, rhs, _) = dynamic_counts(0, 1e-6, 0.0, 10, 1e-4);
+    check("Dormand-Prince tol 1e-6, 1 ms, steps", steps, BASE_DP.0);
+    check("Dormand-Prince tol 1e-6, 1 ms, RHS", rhs, BASE_DP.1);
+}
+
+#[test]
+fn rosenbrock_work_under_combined_load() {
+    let (steps, rhs, _) = dynamic_counts(2, 1e-4, 25_000.0, 10, 1e-4);
+    check("Rosenbrock tol 1e-4, combined, 1 ms, steps", steps, BASE_ROS.0);
+    check("Rosenbrock tol 1e-4, combined, 1 ms, RHS", rhs, BASE_ROS.1);
+}
+
+#[test]
+fn gill_milne_hamming_work_is_fixed_by_the_step() {
+    // fixed step: 1 ms / 2 us = 500 steps, two evaluations per step plus the start
+    let (steps, rhs, rejected) = dynamic_counts(1, 2e-6, 0.0, 10, 1e-4);
+    assert_eq!((steps, rejected), (500, 0));
+    check("Gill/Milne-Hamming h 2e-6, 1 ms, RHS", rhs, BASE_GMH_RHS);
+}
+
+#[test]
+fn quasi_static_newton_iterations_under_combined_load() {
+    let mut s = Simulation::new(Bearing::default_preset());
+    s.set_real(var::FY, 10_000.0).unwrap();
+    s.set_real(var::XI, 0.004_f64.to_radians()).unwrap();
+    s.initialize(0.0).unwrap();
+    let mut total = 0;
+    for k in 0..50 {
+        s.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+        total += s.last_outputs().solver_iterations;
+    }
+    check(
+        "quasi-static Newton iterations, 50 steps of 1 ms, combined load",
+        total,
+        BASE_QS_ITERATIONS,
+    );
+}
+
+/// Baselines (recorded 2026-11-21 at commit 192e5c8 + this file), (steps, RHS).
+const BASE_DP: (i32, i32) = (124, 745);
+const BASE_ROS: (i32, i32) = (83, 357);
+/// 500 steps x 2 evaluations (predictor-corrector) + the Gill start.
+const BASE_GMH_RHS: i32 = 1007;
+/// 2 Newton iterations per step (the spatial predictor's warm start).
+const BASE_QS_ITERATIONS: i32 = 100;
