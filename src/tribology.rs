@@ -93,7 +93,7 @@ impl ViscosityTable {
     /// ln of [`ViscosityTable::eta`] (the interpolated logarithm itself inside the table).
     #[inline]
     pub fn ln_eta(&self, p: f64) -> f64 {
-        let u = p.max(0.0) / Self::STEP;
+        let u = p.max(0.0) * (1.0 / Self::STEP);
         let k = u as usize;
         if k + 1 >= Self::N {
             return fm::ln(roelands_viscosity_with(self.eta0, self.ln_eta0_967, p));

@@ -52,6 +52,7 @@ pub(crate) struct Constants {
     radius: Vec<f64>,
     shrink: Vec<f64>,
     slice_len: f64,
+    inv_slice_len: f64,
     cone: LineConst,
     cup: LineConst,
     flange: Option<FlangeConst>,
@@ -68,6 +69,8 @@ pub(crate) struct Constants {
     ln_eta0_967: f64,
     /// ln(1.5 sigma): at or above it the raceway film is full (lambda >= 1.5).
     ln_full_film: f64,
+    /// ln of the Eyring stress tau_0.
+    ln_eyring: f64,
     eta0: f64,
     /// Roelands viscosity of the oil against pressure.
     viscosity: tr::ViscosityTable,
@@ -168,6 +171,7 @@ impl Constants {
             radius: g.slice_radius.clone(),
             shrink: g.crown.iter().map(|c| c / cos_h).collect(),
             slice_len: g.slice_len,
+            inv_slice_len: 1.0 / g.slice_len,
             cone: LineConst::new(&g.cone, p, g.e_prime),
             cup: LineConst::new(&g.cup, p, g.e_prime),
             flange,
@@ -184,6 +188,7 @@ impl Constants {
             } else {
                 f64::NEG_INFINITY
             },
+            ln_eyring: tr::EYRING_STRESS.ln(),
             e_prime: g.e_prime,
             eta0: p.eta0,
             viscosity: tr::ViscosityTable::new(p.eta0),
@@ -261,9 +266,10 @@ pub(crate) fn cage_speed(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
 /// Roelands viscosity of the mean Hertz pressure, capped at 0.08 p), or dry Coulomb.
 ///
 /// The Hamrock film h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) stays in logarithms: the film
-/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / h takes
-/// exp(ln eta - ln h) (the viscosity table interpolates ln eta), so the full-film regime costs
-/// two logarithms and one exponential before the asinh.
+/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / (h tau_0)
+/// takes exp(ln eta - ln h - ln tau_0) (the viscosity table interpolates ln eta), so the
+/// full-film regime costs two logarithms and one exponential before the asinh, and two
+/// divisions in all.
 #[inline(always)]
 fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
     if q <= 0.0 || vs == 0.0 {
@@ -276,45 +282,49 @@ fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e
         // no rolling: boundary friction, regularised
         return 0.1 * q / (vs * vs + V_EPS * V_EPS).sqrt();
     }
-    let s = (vs / u_e).max(1e-9);
-    let w = q / c.slice_len;
+    let w = q * c.inv_slice_len;
     let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
-    let v_s = s * u_e;
-    // full film: Eyring shear at the Roelands viscosity of the mean Hertz pressure
-    let full_film = || {
-        let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
-                                                   // eta / max(h, 1e-9)
-        let eta_h = if ln_h >= LN_MIN_FILM {
-            fm::exp(c.viscosity.ln_eta(p_mean) - ln_h)
-        } else {
-            c.viscosity.eta(p_mean) / 1e-9
-        };
-        let x = eta_h * v_s / tr::EYRING_STRESS;
-        let asinh = if x < 0.1 {
-            let x2 = x * x;
-            x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
-        } else {
-            fm::ln(x + (x * x + 1.0).sqrt())
-        };
-        let tau_e = tr::EYRING_STRESS * asinh;
-        let tau_l = tr::LIMITING_SHEAR * p_mean;
-        // smooth minimum of the Eyring stress and the limiting shear stress
-        let tau = tau_e * tau_l / (tau_e.powi(4) + tau_l.powi(4)).sqrt().sqrt();
-        tau / p_mean
-    };
-    let mu = if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
-        full_film()
+    // sliding speed with the slide-to-roll ratio floored at 1e-9
+    let v_s = vs.max(1e-9 * u_e);
+    if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
+        let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+        return tau * q / (den * v_s);
+    }
+    let lambda = fm::exp(ln_h) / c.sigma;
+    let mu = if lambda >= 1.5 {
+        let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+        tau / den
     } else {
-        let lambda = fm::exp(ln_h) / c.sigma;
-        if lambda >= 1.5 {
-            full_film()
-        } else if lambda < 0.01 {
+        let s = v_s / u_e;
+        if lambda < 0.01 {
             tr::boundary_mu(s)
         } else {
-            tr::traction_mu(lambda, s, full_film())
+            let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+            tr::traction_mu(lambda, s, tau / den)
         }
     };
     mu * q / v_s
+}
+
+/// Full-film traction of a raceway slice as a fraction `(t, d)`, mu = t / d: Eyring shear
+/// stress tau_e = tau_0 asinh(eta v_s / (h tau_0)) at the Roelands viscosity of the mean Hertz
+/// pressure p (film floored at 1e-9 m), smoothly capped by tau_L = 0.08 p:
+/// mu = tau_e tau_L / ((tau_e^4 + tau_L^4)^(1/4) p) = 0.08 tau_e / (tau_e^4 + tau_L^4)^(1/4).
+/// `w` load per length, `ln_h` ln of the film thickness, `v_s` sliding speed.
+#[inline(always)]
+fn full_film_stress(c: &Constants, line: &LineConst, k: usize, w: f64, ln_h: f64, v_s: f64) -> (f64, f64) {
+    let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
+    let x = fm::exp(c.viscosity.ln_eta(p_mean) - ln_h.max(LN_MIN_FILM) - c.ln_eyring) * v_s;
+    let asinh = if x < 0.1 {
+        let x2 = x * x;
+        x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
+    } else {
+        fm::ln(x + (x * x + 1.0).sqrt())
+    };
+    let tau_e = tr::EYRING_STRESS * asinh;
+    let tau_l = tr::LIMITING_SHEAR * p_mean;
+    let (e2, l2) = (tau_e * tau_e, tau_l * tau_l);
+    (tr::LIMITING_SHEAR * tau_e, (e2 * e2 + l2 * l2).sqrt().sqrt())
 }
 
 /// ln(1e-9): the film thickness floor of the Eyring law.
