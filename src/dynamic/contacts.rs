@@ -367,6 +367,15 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
     let line = race.line;
     let (r0, r1) = (line.reference[0], line.reference[1]);
     let (n0, n1) = (line.normal[0], line.normal[1]);
+    // Velocity fields about the roller's centre of mass, per slice only a cross product with
+    // the lever: sliding v_rel = v_c + w_rel x lever, entrainment (relative to the orbiting
+    // contact point) u = u_c + w_e x lever.
+    let ring_c = race.ring_v0 + race.ring_omega.cross(&race.pos);
+    let pt_c = race.pt_v0 + race.pt_omega.cross(&race.pos);
+    let v_c = race.vel - ring_c;
+    let w_rel = race.w - race.ring_omega;
+    let u_c = (race.vel + ring_c) * 0.5 - pt_c;
+    let w_e = (race.w + race.ring_omega) * 0.5 - race.pt_omega;
     let mut sum = LineSum::default();
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
@@ -379,7 +388,12 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
         if bound < -1e-12 {
             continue;
         }
-        let (ey, ez) = if rho_c > 0.0 { (cl[1] / rho_c, cl[2] / rho_c) } else { (1.0, 0.0) };
+        let (ey, ez) = if rho_c > 0.0 {
+            let inv = 1.0 / rho_c;
+            (cl[1] * inv, cl[2] * inv)
+        } else {
+            (1.0, 0.0)
+        };
         // deepest rim point: towards the raceway (minus its normal) projected on the disc plane
         let g = V3::new(-n0, -ey * n1, -ez * n1);
         let mut d = g - race.a * g.dot(&race.a);
@@ -387,7 +401,7 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
         if dn == 0.0 {
             continue;
         }
-        d /= dn;
+        d *= 1.0 / dn;
         let pl = cl + d * rad;
         let rho_p = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
         let delta = -((pl[0] - r0) * n0 + (rho_p - r1) * n1) + gap(&pl);
@@ -395,20 +409,22 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
             continue;
         }
         let (q_el, dq, ext) = line.law.load(k, delta);
-        let (py, pz) = if rho_p > 0.0 { (pl[1] / rho_p, pl[2] / rho_p) } else { (1.0, 0.0) };
+        let (py, pz) = if rho_p > 0.0 {
+            let inv = 1.0 / rho_p;
+            (pl[1] * inv, pl[2] * inv)
+        } else {
+            (1.0, 0.0)
+        };
         let n = V3::new(n0, py * n1, pz * n1);
         let lever = pl - race.pos;
-        let v_roller = race.vel + race.w.cross(&lever);
-        let v_ring = race.ring_v0 + race.ring_omega.cross(&pl);
-        let v_rel = v_roller - v_ring;
+        let v_rel = v_c + w_rel.cross(&lever);
         let vn = v_rel.dot(&n);
         // damping: c = 2 zeta sqrt(m k_slice / s) per slice (critical for the whole line)
         let c_damp = c.damping_factor * dq.sqrt();
         let q = (q_el - c_damp * vn).max(0.0);
         let damping_power = (q - q_el) * (-vn);
         let v_t = v_rel - n * vn;
-        // entrainment relative to the contact point, which orbits with the roller
-        let ue_vec = (v_roller + v_ring) * 0.5 - (race.pt_v0 + race.pt_omega.cross(&pl));
+        let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
         let vs = v_t.norm();
         let coef = traction_coef(c, line, k, q, vs, u_e);
