@@ -20,21 +20,30 @@ const ROUNDER: f64 = 6_755_399_441_055_744.0;
 /// Natural logarithm of a positive, finite, normal `x`; other inputs fall back to `f64::ln`.
 #[inline(always)]
 pub fn ln(x: f64) -> f64 {
-    if !(x >= f64::MIN_POSITIVE && x < f64::INFINITY) {
-        return x.ln();
+    let bits = x.to_bits();
+    // positive, normal and finite: bits in [2^52, 0x7fef_ffff_ffff_ffff] (one unsigned compare)
+    if bits.wrapping_sub(0x0010_0000_0000_0000) >= 0x7fe0_0000_0000_0000 {
+        return ln_outside(x);
     }
     if (x - 1.0).abs() < 1.0 / 128.0 {
         // near 1 the table form would cancel: the series directly (x - 1 is exact here)
         return ln_1p_small(x - 1.0);
     }
-    let bits = x.to_bits();
-    let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let e = (bits >> 52) as i64 - 1023;
     let j = ((bits >> 45) & 0x7f) as usize;
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
     // m = c_j (1 + u): u = (m - c_j) / c_j, exactly representable difference
     let c = 1.0 + j as f64 / 128.0;
     let u = (m - c) * INV_C[j];
     e as f64 * LN2 + LN_C[j] + ln_1p_small(u)
+}
+
+/// `f64::ln` for the inputs [`ln`] does not handle, out of line: a call in the hot path would
+/// make the callers spill their floating-point registers around it.
+#[cold]
+#[inline(never)]
+fn ln_outside(x: f64) -> f64 {
+    x.ln()
 }
 
 /// ln(1 + u) = u - u^2/2 + u^3/3 - ... for |u| < 1/128: to u^10 the error is < 1e-21 u.
@@ -52,20 +61,29 @@ fn ln_1p_small(u: f64) -> f64 {
 #[inline(always)]
 pub fn exp(y: f64) -> f64 {
     if !(y.abs() < 700.0) {
-        return y.exp();
+        return exp_outside(y);
     }
     // ln 2 / 64 split (fdlibm's ln2_hi/ln2_lo over 64): k * HI is exact for |k| < 2^21.
     const HI: f64 = 6.931_471_803_691_238_164_9e-1 / 64.0;
     const LO: f64 = 1.908_214_929_270_587_700_02e-10 / 64.0;
-    let k = (y * (64.0 / LN2) + ROUNDER) - ROUNDER;
+    let t = y * (64.0 / LN2) + ROUNDER;
+    let k = t - ROUNDER;
     let r = (y - k * HI) - k * LO;
-    let ki = k as i64;
-    let j = ki.rem_euclid(64) as usize;
-    let e = (ki - j as i64) / 64;
+    // t = 1.5 2^52 + k has unit spacing: its bits less ROUNDER's are k (no float-to-int cast)
+    let ki = (t.to_bits() as i64).wrapping_sub(ROUNDER.to_bits() as i64);
+    let j = (ki & 63) as usize;
+    let e = ki >> 6;
     // exp(r), |r| <= ln2/128 = 0.0054: Taylor to r^7, error < 1e-20
     let er = 1.0 + r * (1.0 + r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r / 5040.0))))));
     let scale = f64::from_bits(((e + 1023) as u64) << 52);
     POW2[j] * er * scale
+}
+
+/// `f64::exp` for |y| >= 700 and NaN, out of line (see [`ln_outside`]).
+#[cold]
+#[inline(never)]
+fn exp_outside(y: f64) -> f64 {
+    y.exp()
 }
 
 /// x^p for positive, finite x (exp(p ln x); relative error about |p ln x| ulp).

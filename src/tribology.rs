@@ -63,7 +63,8 @@ pub fn roelands_viscosity_with(eta0: f64, ln_eta0_967: f64, p: f64) -> f64 {
 pub struct ViscosityTable {
     eta0: f64,
     ln_eta0_967: f64,
-    ln_eta: Vec<f64>,
+    /// ln eta at k STEP (fixed length: the interpolation needs no bounds checks).
+    ln_eta: Box<[f64; ViscosityTable::N]>,
 }
 
 impl ViscosityTable {
@@ -72,9 +73,10 @@ impl ViscosityTable {
 
     pub fn new(eta0: f64) -> ViscosityTable {
         let ln_eta0_967 = eta0.ln() + 9.67;
-        let ln_eta = (0..Self::N)
+        let ln_eta: Vec<f64> = (0..Self::N)
             .map(|k| roelands_viscosity_with(eta0, ln_eta0_967, k as f64 * Self::STEP).ln())
             .collect();
+        let ln_eta = ln_eta.into_boxed_slice().try_into().expect("table length N");
         ViscosityTable { eta0, ln_eta0_967, ln_eta }
     }
 
@@ -92,15 +94,25 @@ impl ViscosityTable {
     }
 
     /// ln of [`ViscosityTable::eta`] (the interpolated logarithm itself inside the table).
-    #[inline]
+    #[inline(always)]
     pub fn ln_eta(&self, p: f64) -> f64 {
-        let u = p.max(0.0) / Self::STEP;
+        let u = p.max(0.0) * (1.0 / Self::STEP);
+        // beyond the last interval (k + 1 >= N): the formula
         if !(u < (Self::N - 1) as f64) {
-            return fm::ln(roelands_viscosity_with(self.eta0, self.ln_eta0_967, p));
+            return self.ln_eta_outside(p);
         }
-        let k = u as usize;
+        // SAFETY: 0 <= u < N - 1 (p.max(0.0) is never NaN), so the truncation is in range
+        let k: usize = unsafe { u.to_int_unchecked() };
         let f = u - k as f64;
-        self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k])
+        let (a, b) = (self.ln_eta[k], self.ln_eta[(k + 1).min(Self::N - 1)]);
+        a + f * (b - a)
+    }
+
+    /// [`ViscosityTable::ln_eta`] above the table (out of line, rare).
+    #[cold]
+    #[inline(never)]
+    fn ln_eta_outside(&self, p: f64) -> f64 {
+        fm::ln(roelands_viscosity_with(self.eta0, self.ln_eta0_967, p))
     }
 }
 

@@ -52,6 +52,7 @@ pub(crate) struct Constants {
     radius: Vec<f64>,
     shrink: Vec<f64>,
     slice_len: f64,
+    inv_slice_len: f64,
     cone: LineConst,
     cup: LineConst,
     flange: Option<FlangeConst>,
@@ -68,6 +69,8 @@ pub(crate) struct Constants {
     ln_eta0_967: f64,
     /// ln(1.5 sigma): at or above it the raceway film is full (lambda >= 1.5).
     ln_full_film: f64,
+    /// ln of the Eyring stress tau_0.
+    ln_eyring: f64,
     eta0: f64,
     /// Roelands viscosity of the oil against pressure.
     viscosity: tr::ViscosityTable,
@@ -168,6 +171,7 @@ impl Constants {
             radius: g.slice_radius.clone(),
             shrink: g.crown.iter().map(|c| c / cos_h).collect(),
             slice_len: g.slice_len,
+            inv_slice_len: 1.0 / g.slice_len,
             cone: LineConst::new(&g.cone, p, g.e_prime),
             cup: LineConst::new(&g.cup, p, g.e_prime),
             flange,
@@ -184,6 +188,7 @@ impl Constants {
             } else {
                 f64::NEG_INFINITY
             },
+            ln_eyring: tr::EYRING_STRESS.ln(),
             e_prime: g.e_prime,
             eta0: p.eta0,
             viscosity: tr::ViscosityTable::new(p.eta0),
@@ -261,9 +266,10 @@ pub(crate) fn cage_speed(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
 /// Roelands viscosity of the mean Hertz pressure, capped at 0.08 p), or dry Coulomb.
 ///
 /// The Hamrock film h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) stays in logarithms: the film
-/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / h takes
-/// exp(ln eta - ln h) (the viscosity table interpolates ln eta), so the full-film regime costs
-/// two logarithms and one exponential before the asinh.
+/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / (h tau_0)
+/// takes exp(ln eta - ln h - ln tau_0) (the viscosity table interpolates ln eta), so the
+/// full-film regime costs two logarithms and one exponential before the asinh, and two
+/// divisions in all.
 #[inline(always)]
 fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
     if q <= 0.0 || vs == 0.0 {
@@ -276,45 +282,49 @@ fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e
         // no rolling: boundary friction, regularised
         return 0.1 * q / (vs * vs + V_EPS * V_EPS).sqrt();
     }
-    let s = (vs / u_e).max(1e-9);
-    let w = q / c.slice_len;
+    let w = q * c.inv_slice_len;
     let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
-    let v_s = s * u_e;
-    // full film: Eyring shear at the Roelands viscosity of the mean Hertz pressure
-    let full_film = || {
-        let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
-                                                   // eta / max(h, 1e-9)
-        let eta_h = if ln_h >= LN_MIN_FILM {
-            fm::exp(c.viscosity.ln_eta(p_mean) - ln_h)
-        } else {
-            c.viscosity.eta(p_mean) / 1e-9
-        };
-        let x = eta_h * v_s / tr::EYRING_STRESS;
-        let asinh = if x < 0.1 {
-            let x2 = x * x;
-            x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
-        } else {
-            fm::ln(x + (x * x + 1.0).sqrt())
-        };
-        let tau_e = tr::EYRING_STRESS * asinh;
-        let tau_l = tr::LIMITING_SHEAR * p_mean;
-        // smooth minimum of the Eyring stress and the limiting shear stress
-        let tau = tau_e * tau_l / (tau_e.powi(4) + tau_l.powi(4)).sqrt().sqrt();
-        tau / p_mean
-    };
-    let mu = if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
-        full_film()
+    // sliding speed with the slide-to-roll ratio floored at 1e-9
+    let v_s = vs.max(1e-9 * u_e);
+    if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
+        let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+        return tau * q / (den * v_s);
+    }
+    let lambda = fm::exp(ln_h) / c.sigma;
+    let mu = if lambda >= 1.5 {
+        let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+        tau / den
     } else {
-        let lambda = fm::exp(ln_h) / c.sigma;
-        if lambda >= 1.5 {
-            full_film()
-        } else if lambda < 0.01 {
+        let s = v_s / u_e;
+        if lambda < 0.01 {
             tr::boundary_mu(s)
         } else {
-            tr::traction_mu(lambda, s, full_film())
+            let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
+            tr::traction_mu(lambda, s, tau / den)
         }
     };
     mu * q / v_s
+}
+
+/// Full-film traction of a raceway slice as a fraction `(t, d)`, mu = t / d: Eyring shear
+/// stress tau_e = tau_0 asinh(eta v_s / (h tau_0)) at the Roelands viscosity of the mean Hertz
+/// pressure p (film floored at 1e-9 m), smoothly capped by tau_L = 0.08 p:
+/// mu = tau_e tau_L / ((tau_e^4 + tau_L^4)^(1/4) p) = 0.08 tau_e / (tau_e^4 + tau_L^4)^(1/4).
+/// `w` load per length, `ln_h` ln of the film thickness, `v_s` sliding speed.
+#[inline(always)]
+fn full_film_stress(c: &Constants, line: &LineConst, k: usize, w: f64, ln_h: f64, v_s: f64) -> (f64, f64) {
+    let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
+    let x = fm::exp(c.viscosity.ln_eta(p_mean) - ln_h.max(LN_MIN_FILM) - c.ln_eyring) * v_s;
+    let asinh = if x < 0.1 {
+        let x2 = x * x;
+        x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
+    } else {
+        fm::ln(x + (x * x + 1.0).sqrt())
+    };
+    let tau_e = tr::EYRING_STRESS * asinh;
+    let tau_l = tr::LIMITING_SHEAR * p_mean;
+    let (e2, l2) = (tau_e * tau_e, tau_l * tau_l);
+    (tr::LIMITING_SHEAR * tau_e, (e2 * e2 + l2 * l2).sqrt().sqrt())
 }
 
 /// ln(1e-9): the film thickness floor of the Eyring law.
@@ -357,6 +367,15 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
     let line = race.line;
     let (r0, r1) = (line.reference[0], line.reference[1]);
     let (n0, n1) = (line.normal[0], line.normal[1]);
+    // Velocity fields about the roller's centre of mass, per slice only a cross product with
+    // the lever: sliding v_rel = v_c + w_rel x lever, entrainment (relative to the orbiting
+    // contact point) u = u_c + w_e x lever.
+    let ring_c = race.ring_v0 + race.ring_omega.cross(&race.pos);
+    let pt_c = race.pt_v0 + race.pt_omega.cross(&race.pos);
+    let v_c = race.vel - ring_c;
+    let w_rel = race.w - race.ring_omega;
+    let u_c = (race.vel + ring_c) * 0.5 - pt_c;
+    let w_e = (race.w + race.ring_omega) * 0.5 - race.pt_omega;
     let mut sum = LineSum::default();
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
@@ -369,7 +388,12 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
         if bound < -1e-12 {
             continue;
         }
-        let (ey, ez) = if rho_c > 0.0 { (cl[1] / rho_c, cl[2] / rho_c) } else { (1.0, 0.0) };
+        let (ey, ez) = if rho_c > 0.0 {
+            let inv = 1.0 / rho_c;
+            (cl[1] * inv, cl[2] * inv)
+        } else {
+            (1.0, 0.0)
+        };
         // deepest rim point: towards the raceway (minus its normal) projected on the disc plane
         let g = V3::new(-n0, -ey * n1, -ez * n1);
         let mut d = g - race.a * g.dot(&race.a);
@@ -377,7 +401,7 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
         if dn == 0.0 {
             continue;
         }
-        d /= dn;
+        d *= 1.0 / dn;
         let pl = cl + d * rad;
         let rho_p = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
         let delta = -((pl[0] - r0) * n0 + (rho_p - r1) * n1) + gap(&pl);
@@ -385,20 +409,22 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> f64) ->
             continue;
         }
         let (q_el, dq, ext) = line.law.load(k, delta);
-        let (py, pz) = if rho_p > 0.0 { (pl[1] / rho_p, pl[2] / rho_p) } else { (1.0, 0.0) };
+        let (py, pz) = if rho_p > 0.0 {
+            let inv = 1.0 / rho_p;
+            (pl[1] * inv, pl[2] * inv)
+        } else {
+            (1.0, 0.0)
+        };
         let n = V3::new(n0, py * n1, pz * n1);
         let lever = pl - race.pos;
-        let v_roller = race.vel + race.w.cross(&lever);
-        let v_ring = race.ring_v0 + race.ring_omega.cross(&pl);
-        let v_rel = v_roller - v_ring;
+        let v_rel = v_c + w_rel.cross(&lever);
         let vn = v_rel.dot(&n);
         // damping: c = 2 zeta sqrt(m k_slice / s) per slice (critical for the whole line)
         let c_damp = c.damping_factor * dq.sqrt();
         let q = (q_el - c_damp * vn).max(0.0);
         let damping_power = (q - q_el) * (-vn);
         let v_t = v_rel - n * vn;
-        // entrainment relative to the contact point, which orbits with the roller
-        let ue_vec = (v_roller + v_ring) * 0.5 - (race.pt_v0 + race.pt_omega.cross(&pl));
+        let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
         let vs = v_t.norm();
         let coef = traction_coef(c, line, k, q, vs, u_e);

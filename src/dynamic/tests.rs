@@ -431,11 +431,17 @@ fn rhs_cost() {
     let mut d = super::Dynamic::new(&b, &p).unwrap();
     let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
     let mut dy = vec![0.0; st.y.len()];
+    d.rhs(&i, &st.y, &mut dy);
     let t0 = std::time::Instant::now();
     for _ in 0..n {
         d.rhs(&i, &st.y, &mut dy);
     }
-    println!("{n} rhs: {:?} per rhs, dy[20] = {}", t0.elapsed() / n as u32, dy[20]);
+    println!("{n} rhs: {:?} per rhs, dy[20] = {}", t0.elapsed() / n.max(1) as u32, dy[20]);
+    // RHS_DUMP=file: the whole derivative at full precision, to compare builds
+    if let Ok(path) = std::env::var("RHS_DUMP") {
+        let text: String = dy.iter().map(|v| format!("{v:e}\n")).collect();
+        std::fs::write(path, text).unwrap();
+    }
 }
 
 /// Eigenvalues of the finite-difference Jacobian at the initial state (exploration).
