@@ -116,6 +116,7 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     }
     println!("timing kernels ...");
     let kernels = Kernels::measure(args.quick).map_err(CliError::failed)?;
+    let slices = slice_study(&results, args.quick)?;
     let long = if args.quick || args.skip_long {
         Vec::new()
     } else {
@@ -127,7 +128,7 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         .map(|p| p.join("figures"))
         .unwrap_or_else(|| PathBuf::from("figures"));
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
-    let text = document(&args, &results, &kernels, &long, &figures, started.elapsed().as_secs_f64())?;
+    let text = document(&args, &results, &kernels, &slices, &long, &figures, started.elapsed().as_secs_f64())?;
     report::replace_section(&args.out, BEGIN, END, "Performance", &text)?;
     println!("wrote {} ({:.0} s)", args.out.display(), started.elapsed().as_secs_f64());
     Ok(())
@@ -244,11 +245,56 @@ impl Kernels {
     fn measure(quick: bool) -> Result<Kernels, String> {
         Ok(Kernels {
             bookkeeping: kernels::fmi_do_step_seconds(quick)?,
-            rhs_axial: kernels::rhs_seconds(0.0, quick)?,
-            rhs_combined: kernels::rhs_seconds(25_000.0, quick)?,
+            rhs_axial: kernels::rhs_seconds(20, 0.0, quick)?,
+            rhs_combined: kernels::rhs_seconds(20, 25_000.0, quick)?,
             quasi_static_step: kernels::quasi_static_step_seconds(quick)?,
         })
     }
+}
+
+/// The fidelity knob `slices` on the [W25] window: cost and output change against 20 slices.
+struct SliceRow {
+    slices: usize,
+    rhs: f64,
+    outcome: Result<(Trace, [f64; OUTPUTS.len()]), String>,
+}
+
+/// Slices per contact line: RHS cost and the change of every output against 20 slices
+/// (Dormand–Prince at 1e-7, so that integration error is far below the differences).
+fn slice_study(results: &[ScenarioResult], quick: bool) -> Result<Vec<SliceRow>, CliError> {
+    let Some(w25) = results.iter().find(|r| r.name.starts_with("w25_axial")) else {
+        return Ok(Vec::new());
+    };
+    let method = Method {
+        integrator: 0,
+        setting: 1e-7,
+    };
+    let with_slices = |n: usize| -> Result<Trace, String> {
+        let mut s = w25.scenario.clone();
+        let (vr, row) = trb::variables::find("slices", s.bearing.bearing.roller_count).expect("slices parameter");
+        s.parameters.retain(|(v, _)| v.name != "slices");
+        s.parameters.push((
+            super::scenario::Var {
+                vr,
+                name: "slices".into(),
+                ty: row.ty,
+            },
+            super::scenario::Value::Integer(n as i32),
+        ));
+        precision::run(&s, &method)
+    };
+    let base = with_slices(20).map_err(|e| CliError::failed(format!("slices study, 20 slices: {e}")))?;
+    let mut rows = Vec::new();
+    for n in [5, 10, 20, 40] {
+        println!("slices {n} ...");
+        let rhs = kernels::rhs_seconds(n, 0.0, quick).map_err(CliError::failed)?;
+        let outcome = if n == 20 { Ok(base.clone()) } else { with_slices(n) }.map(|t| {
+            let e = precision::errors(&t, &base);
+            (t, e)
+        });
+        rows.push(SliceRow { slices: n, rhs, outcome });
+    }
+    Ok(rows)
 }
 
 /// A long run of the [W25] case with a method chosen on the benchmark window.
@@ -327,6 +373,7 @@ fn document(
     args: &BenchArgs,
     results: &[ScenarioResult],
     k: &Kernels,
+    slices: &[SliceRow],
     long: &[LongRun],
     figures: &Path,
     elapsed: f64,
@@ -353,13 +400,14 @@ fn document(
     );
     targets(&mut d, results, k, long);
     speedups(&mut d, results);
+    slice_table(&mut d, slices);
     let _ = writeln!(d, "### Work-precision diagrams\n");
     let _ = writeln!(
         d,
         "Error of an output: RMS over the communication points of the difference from the \
          reference, divided by the RMS of the reference signal (or by a floor where that is \
          nearly zero: skew 1e-7 rad, tilt 1e-8 rad, cage speed 1e-3 rad/s, torque 1e-3 N m, \
-         force 1 N, moment 0.1 N m, cone displacement 1 nm). The run's error is the largest \
+         force 1 N, moment 1 N m, cone displacement 1 nm). The run's error is the largest \
          over {} outputs: {}. Torque/skew error: the largest over friction torque, mean \
          skew and roller 1's skew. Wall time: the whole run, building the element and the \
          quasi-static start included. Errors below the reference's resolution (its \
@@ -461,6 +509,51 @@ fn targets(d: &mut String, results: &[ScenarioResult], k: &Kernels, long: &[Long
         }
     }
     d.push_str(&table(&["target", "goal", "measured (median)", "status"], &rows));
+    d.push('\n');
+}
+
+fn slice_table(d: &mut String, rows: &[SliceRow]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(d, "### Fidelity knob: slices per contact line ([W25] window)\n");
+    let _ = writeln!(
+        d,
+        "Cost of one right-hand side and of the window (Dormand–Prince, tol 1e-7) against the \
+         number of slices, and how far the outputs move from the 20-slice run (relative RMS as \
+         above). Fewer slices is a fidelity choice, not an integration error: it changes the \
+         contact-line load distribution and so the tilting and skewing moments.\n"
+    );
+    let mut table_rows = Vec::new();
+    for r in rows {
+        let mut row = vec![r.slices.to_string(), micro(r.rhs)];
+        match &r.outcome {
+            Ok((t, e)) => {
+                row.push(format!("{:.3} s ({} RHS)", t.wall, t.rhs));
+                for k in [5, 0, 3, 4, 10] {
+                    row.push(sci(e[k]));
+                }
+            }
+            Err(e) => {
+                row.push(format!("failed: {e}"));
+                row.extend(std::iter::repeat_n(String::new(), 5));
+            }
+        }
+        table_rows.push(row);
+    }
+    d.push_str(&table(
+        &[
+            "slices",
+            "one RHS",
+            "window wall",
+            "frictionTorque",
+            "roller[1].skew",
+            "tilt.max",
+            "cage.speed",
+            "Qo.max",
+        ],
+        &table_rows,
+    ));
     d.push('\n');
 }
 

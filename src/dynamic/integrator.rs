@@ -71,6 +71,9 @@ pub enum Failure {
     NotFinite { t: f64 },
     /// More than the step budget for one interval.
     TooManySteps { t: f64, steps: u64 },
+    /// Fixed-step method: the local error estimate exceeded the tolerance by the factor
+    /// `estimate` (unstable or far too long a step `h`).
+    FixedStepTooLong { t: f64, h: f64, estimate: f64 },
 }
 
 /// Workspace and settings of the integrator.

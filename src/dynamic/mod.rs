@@ -161,7 +161,7 @@ impl Dynamic {
         let n = ROLLERS + PER_ROLLER * g.z;
         let (atol, rtol) = tolerances(&g, &c, params, bearing.speed.abs().max(100.0), n);
         let ig = match params.integrator {
-            1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step)),
+            1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
             2 => {
                 let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance).collect();
                 let moving_x = g.axial && params.preload == Preload::Force;
@@ -310,6 +310,10 @@ impl Dynamic {
                 ),
                 Failure::NotFinite { t } => format!("the state became non-finite at t = {t:.9} s"),
                 Failure::TooManySteps { t, steps } => format!("more than {steps} steps in one communication interval (t = {t:.9} s)"),
+                Failure::FixedStepTooLong { t, h, estimate } => format!(
+                    "the fixed step {h:.3e} s (maxStep) is unstable or too long: the local error estimate (Milne) is {estimate:.1e} times the tolerance {:.1e} at t = {t:.9} s; reduce maxStep",
+                    self.p.tolerance
+                ),
             };
             ModelError::IntegratorFailure { message }
         })

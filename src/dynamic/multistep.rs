@@ -12,18 +12,29 @@
 //!   y_{n+1} = c_{n+1} + 9/121 (p_{n+1} - c_{n+1})                    (final modifier)
 //! ```
 //!
-//! with f_{n+1} = f(y_{n+1}): two right-hand sides per step, no error control. The method
-//! restarts (Gill again) when the step size or the inputs change. Its history (three past
+//! with f_{n+1} = f(y_{n+1}): two right-hand sides per step, no step size control. The
+//! method still watches its local error: Milne's estimate of the corrector's truncation
+//! error, 9/121 (p_{n+1} - c_{n+1}), in the RMS norm of the adaptive methods (per-component
+//! scales atol_i + rtol_i |y_i| from `tolerance`). A fixed step that is unstable or far too
+//! long grows that estimate without bound long before the state overflows, so an estimate
+//! above [`UNSTABLE`] times the tolerance ends the step with [`Failure::FixedStepTooLong`]
+//! instead of returning a finite but meaningless state. The method restarts (Gill again)
+//! when the step size or the inputs change. Its history (three past
 //! states, two past derivatives, p_n - c_n) is part of the caller's state (`memory`), the
 //! current derivative is `fsal`, so a restored state continues bit for bit.
 
 use super::integrator::{Counters, Failure};
+
+/// Milne's error estimate, in units of the tolerance, above which the fixed step is refused.
+pub const UNSTABLE: f64 = 1e3;
 
 /// Workspace of the fixed-step method.
 #[derive(Debug, Clone)]
 pub struct MilneHamming {
     n: usize,
     pub max_step: f64,
+    atol: Vec<f64>,
+    rtol: Vec<f64>,
     k: [Vec<f64>; 3],
     ys: Vec<f64>,
     p: Vec<f64>,
@@ -42,10 +53,14 @@ const BLOCKS: usize = 6;
 const SQ: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 impl MilneHamming {
-    pub fn new(n: usize, max_step: f64) -> MilneHamming {
+    /// `atol`, `rtol`: the per-component error scales of the adaptive methods (length n).
+    pub fn new(n: usize, max_step: f64, atol: Vec<f64>, rtol: Vec<f64>) -> MilneHamming {
+        assert!(atol.len() == n && rtol.len() == n);
         MilneHamming {
             n,
             max_step,
+            atol,
+            rtol,
             k: std::array::from_fn(|_| vec![0.0; n]),
             ys: vec![0.0; n],
             p: vec![0.0; n],
@@ -87,11 +102,12 @@ impl MilneHamming {
         let t0 = *t;
         for step in 0..steps as u64 {
             let have = memory[1] as usize;
-            if have < 3 {
+            let estimate = if have < 3 {
                 self.gill(&mut f, y, h, fsal, memory, counters);
+                0.0
             } else {
-                self.milne_hamming(&mut f, y, h, fsal, memory, counters);
-            }
+                self.milne_hamming(&mut f, y, h, fsal, memory, counters)
+            };
             counters.steps += 1;
             *t = if step + 1 == steps as u64 {
                 t_end
@@ -101,6 +117,10 @@ impl MilneHamming {
             if !(y.iter().all(|v| v.is_finite()) && fsal.iter().all(|v| v.is_finite())) {
                 memory.clear();
                 return Err(Failure::NotFinite { t: *t });
+            }
+            if estimate > UNSTABLE {
+                memory.clear();
+                return Err(Failure::FixedStepTooLong { t: *t, h, estimate });
             }
         }
         Ok(())
@@ -157,7 +177,7 @@ impl MilneHamming {
         fsal: &mut [f64],
         memory: &mut [f64],
         counters: &mut Counters,
-    ) {
+    ) -> f64 {
         let n = self.n;
         let at = |b: usize| HEAD + b * n;
         let p = &mut self.p;
@@ -184,12 +204,24 @@ impl MilneHamming {
             }
         }
         Self::push(self.n, memory, y, fsal);
+        let mut sum = 0.0;
         for i in 0..n {
+            let y_old = y[i];
             memory[at(PC) + i] = p[i] - c[i];
             y[i] = c[i] + 9.0 / 121.0 * (p[i] - c[i]);
+            let scale = self.atol[i] + self.rtol[i] * y_old.abs().max(y[i].abs());
+            let e = 9.0 / 121.0 * (p[i] - c[i]) / scale;
+            sum += e * e;
         }
         f(y, fsal);
         counters.rhs += 2;
+        // the RMS norm; NaN (a diverged corrector) counts as unstable
+        let norm = (sum / n as f64).sqrt();
+        if norm.is_nan() {
+            f64::INFINITY
+        } else {
+            norm
+        }
     }
 }
 
@@ -200,7 +232,7 @@ mod tests {
     fn run(h: f64) -> (f64, Counters) {
         // harmonic oscillator y'' = -w^2 y, communication interval 0.1
         let w = 3.0;
-        let mut ig = MilneHamming::new(2, h);
+        let mut ig = MilneHamming::new(2, h, vec![1e-6; 2], vec![1e-6; 2]);
         let mut y = [1.0, 0.0];
         let mut t = 0.0;
         let mut c = Counters::default();
@@ -233,5 +265,37 @@ mod tests {
         assert_eq!(c1.steps, 200);
         assert_eq!(c1.rhs, 1 + 3 * 4 + 197 * 2);
         assert_eq!(c2.steps, 400);
+    }
+
+    /// y' = -lambda y with h lambda = 1: beyond the stability interval of Milne-Hamming (about
+    /// 0.69); the solution decays, the method's oscillates and grows. The error estimate must
+    /// stop it with a message long before overflow, while a stable step passes.
+    #[test]
+    fn an_unstable_fixed_step_is_refused_before_the_state_overflows() {
+        let lambda = 1e4;
+        let run = |h: f64| {
+            let mut ig = MilneHamming::new(1, h, vec![1e-9], vec![1e-6]);
+            let (mut t, mut y) = (0.0, [1.0]);
+            let (mut fsal, mut mem) = (Vec::new(), Vec::new());
+            let mut c = Counters::default();
+            ig.integrate(
+                |y: &[f64], d: &mut [f64]| d[0] = -lambda * y[0],
+                &mut t,
+                &mut y,
+                0.05,
+                &mut c,
+                &mut fsal,
+                &mut mem,
+            )
+            .map(|_| y[0])
+        };
+        let stable = run(1e-6).expect("h lambda = 0.01 is stable and accurate");
+        assert!((stable - (-lambda * 0.05_f64).exp()).abs() < 1e-9);
+        match run(1e-4) {
+            Err(Failure::FixedStepTooLong { t, h, estimate }) => {
+                assert!(estimate > UNSTABLE && h == 1e-4 && t < 0.05, "{t} {h} {estimate}");
+            }
+            other => panic!("expected FixedStepTooLong, got {other:?}"),
+        }
     }
 }

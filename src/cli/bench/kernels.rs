@@ -28,12 +28,14 @@ fn per_call(samples: usize, calls: usize, mut f: impl FnMut()) -> f64 {
     median(&t)
 }
 
-/// Median seconds of one dynamic right-hand side of the default bearing (20 slices, the
-/// [W25] case: 3500 rpm, Fa 30 kN) with the radial load `fy`, at the quasi-static start state.
-pub fn rhs_seconds(fy: f64, quick: bool) -> Result<f64, String> {
+/// Median seconds of one dynamic right-hand side of the default bearing (the [W25] case:
+/// 3500 rpm, Fa 30 kN) with `slices` slices and the radial load `fy`, at the quasi-static
+/// start state.
+pub fn rhs_seconds(slices: usize, fy: f64, quick: bool) -> Result<f64, String> {
     let b = Bearing::default_preset();
     let mut p = Parameters::from_bearing(&b);
     p.fidelity = Fidelity::Dynamic;
+    p.slices = slices;
     let mut i = Inputs::from_bearing(&b);
     i.fy = fy;
     let mut qs = QuasiStatic::new(&b, &p).map_err(|e| e.to_string())?;
