@@ -3,23 +3,13 @@
 //! Rosenbrock-W at a moderate tolerance agree with Dormand–Prince at a tight one, output by
 //! output over every communication point, within the accuracy their settings promise.
 
-use trb::bearing::Bearing;
+mod common;
+
 use trb::model::Outputs;
-use trb::simulation::Simulation;
-use trb::variables as var;
 
 /// (friction torque, mean skew, roller 1 skew, cage speed, max cup load) at every 0.1 ms for 2 ms.
 fn series(integrator: i32, setting: f64, fy: f64) -> Vec<[f64; 5]> {
-    let mut s = Simulation::new(Bearing::default_preset());
-    s.set_integer(var::FIDELITY, 1).unwrap();
-    s.set_integer(var::INTEGRATOR, integrator).unwrap();
-    if integrator == 1 {
-        s.set_real(var::MAX_STEP, setting).unwrap();
-    } else {
-        s.set_real(var::TOLERANCE, setting).unwrap();
-    }
-    s.set_real(var::FY, fy).unwrap();
-    s.initialize(0.0).unwrap();
+    let mut s = common::dynamic_element(integrator, setting, fy);
     let h = 1e-4;
     let pick = |o: &Outputs| [o.friction_torque, o.skew_mean, o.skew[0], o.cage_speed, o.qo_max];
     let mut out = vec![pick(s.last_outputs())];

@@ -10,6 +10,8 @@
 //! baseline fails too, so that an improvement lowers the baseline (or a broken integrator
 //! that skips work is noticed).
 
+mod common;
+
 use trb::bearing::Bearing;
 use trb::simulation::Simulation;
 use trb::variables as var;
@@ -17,16 +19,7 @@ use trb::variables as var;
 /// Work of `steps` communication steps of `h` for the default bearing ([W25] case, 3500 rpm,
 /// Fa 30 kN) with the given settings: (integrator steps, RHS evaluations, rejected steps).
 fn dynamic_counts(integrator: i32, setting: f64, fy: f64, steps: usize, h: f64) -> (i32, i32, i32) {
-    let mut s = Simulation::new(Bearing::default_preset());
-    s.set_integer(var::FIDELITY, 1).unwrap();
-    s.set_integer(var::INTEGRATOR, integrator).unwrap();
-    if integrator == 1 {
-        s.set_real(var::MAX_STEP, setting).unwrap();
-    } else {
-        s.set_real(var::TOLERANCE, setting).unwrap();
-    }
-    s.set_real(var::FY, fy).unwrap();
-    s.initialize(0.0).unwrap();
+    let mut s = common::dynamic_element(integrator, setting, fy);
     for k in 0..steps {
         s.do_step(k as f64 * h, h).unwrap();
     }

@@ -1,0 +1,22 @@
+//! Helpers shared by the integration tests (`mod common;` in each test file that uses them).
+
+use trb::bearing::Bearing;
+use trb::simulation::Simulation;
+use trb::variables as var;
+
+/// The default bearing ([W25] case: 3500 rpm, Fa 30 kN) at fidelity 1 with radial load `fy`,
+/// integrated by `integrator` with `setting` as its tolerance (0, 2) or fixed step `maxStep`
+/// (1), initialized at t = 0.
+pub fn dynamic_element(integrator: i32, setting: f64, fy: f64) -> Simulation {
+    let mut s = Simulation::new(Bearing::default_preset());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.set_integer(var::INTEGRATOR, integrator).unwrap();
+    if integrator == 1 {
+        s.set_real(var::MAX_STEP, setting).unwrap();
+    } else {
+        s.set_real(var::TOLERANCE, setting).unwrap();
+    }
+    s.set_real(var::FY, fy).unwrap();
+    s.initialize(0.0).unwrap();
+    s
+}
