@@ -649,7 +649,7 @@ fn scenario_section(d: &mut String, r: &ScenarioResult, figures: &Path) -> Resul
             .map(|m| (precision::max_error(&m.errors).max(floor).max(1e-16), m.wall))
             .collect();
         if !points.is_empty() {
-            series.push(Series::new(f.1.split(',').next().unwrap_or(f.1), points));
+            series.push(Series::new(f.2, points));
         }
     }
     if !series.is_empty() {
@@ -668,7 +668,7 @@ fn scenario_section(d: &mut String, r: &ScenarioResult, figures: &Path) -> Resul
     }
     let mut rows = Vec::new();
     for x in &r.runs {
-        let mut row = vec![x.method.family().split(',').next().unwrap_or("").to_string(), x.method.label()];
+        let mut row = vec![x.method.short_family().to_string(), x.method.label()];
         match &x.outcome {
             Ok(m) => {
                 let e = precision::max_error(&m.errors);

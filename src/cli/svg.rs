@@ -93,8 +93,16 @@ fn legend(out: &mut String, names: &[&str]) {
 fn axis_ticks(v0: f64, v1: f64, log: bool, step: f64) -> Vec<(f64, f64)> {
     let mut ticks = Vec::new();
     if log {
+        // 1, 2, 5 per decade over up to 3 decades; beyond, the powers of ten only (every
+        // second one beyond 8 decades) so that the labels do not overlap
+        let span = v1 - v0;
+        let multipliers: &[f64] = if span > 3.0 { &[1.0] } else { &[1.0, 2.0, 5.0] };
+        let stride = if span > 8.0 { 2 } else { 1 };
         for k in (v0.floor() as i32)..=(v1.ceil() as i32) {
-            for m in [1.0, 2.0, 5.0] {
+            if k.rem_euclid(stride) != 0 {
+                continue;
+            }
+            for &m in multipliers {
                 let v = m * 10f64.powi(k);
                 if v.log10() >= v0 - 1e-9 && v.log10() <= v1 + 1e-9 {
                     ticks.push((v, v / 10.0));
@@ -133,6 +141,9 @@ pub fn chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x
     }
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if log_x {
+        (x0, x1) = (x0.floor(), x1.ceil());
     }
     if log_y {
         (y0, y1) = (y0.floor(), y1.ceil());

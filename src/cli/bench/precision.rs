@@ -30,11 +30,11 @@ pub const OUTPUTS: [(&str, f64); 11] = [
 /// Indices into [`OUTPUTS`] of the torque/skew error.
 const TORQUE_SKEW: [usize; 3] = [0, 1, 5];
 
-/// The integrator families, in report order: (integrator parameter value, name).
-pub const FAMILIES: [(i32, &str); 3] = [
-    (0, "Dormand–Prince 5(4), adaptive (default)"),
-    (2, "Rosenbrock-W ROS34PW2, adaptive, block Jacobian"),
-    (1, "Gill RK + Milne–Hamming, fixed step (the [W25] method)"),
+/// The integrator families, in report order: (integrator parameter value, name, short name).
+pub const FAMILIES: [(i32, &str, &str); 3] = [
+    (0, "Dormand–Prince 5(4), adaptive (default)", "Dormand–Prince"),
+    (2, "Rosenbrock-W ROS34PW2, adaptive, block Jacobian", "Rosenbrock-W"),
+    (1, "Gill RK + Milne–Hamming, fixed step (the [W25] method)", "Gill/Milne–Hamming"),
 ];
 
 /// One integrator setting: `integrator` with `tolerance` (0, 2) or the fixed step `maxStep` (1).
@@ -47,6 +47,10 @@ pub struct Method {
 impl Method {
     pub fn family(&self) -> &'static str {
         FAMILIES.iter().find(|f| f.0 == self.integrator).map_or("?", |f| f.1)
+    }
+
+    pub fn short_family(&self) -> &'static str {
+        FAMILIES.iter().find(|f| f.0 == self.integrator).map_or("?", |f| f.2)
     }
 
     /// "tol 1e-6" or "h 2.0e-6 s".
