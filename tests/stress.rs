@@ -57,29 +57,75 @@ fn quick_stress_matrix_has_no_new_failures() {
     assert!(run.count("passed") > run.cases.len() / 2);
 }
 
+/// (case id, text in the failure reason) of known fidelity-1 failures (docs/robustness.md,
+/// "Findings").
+const KNOWN_1: &[(&str, &str)] = &[];
+
+/// The CI subset of the quick fidelity-1 list: the cheap groups (loads up to 0.1 C0 in every
+/// direction, speeds up to n_lim, unloaded rollers, out-of-range refusals and their messages,
+/// the light-load dynamic cases) on every preset. The dynamic model costs up to seconds per
+/// simulated ms under heavy load or at standstill (F11); the full list runs with
+/// `stress --fidelity 1`.
+fn ci_subset(c: &matrix::Case) -> bool {
+    let what = c.what.as_str();
+    let load = |max: f64| {
+        what.strip_suffix("C0")
+            .and_then(|f| f.parse::<f64>().ok())
+            .is_some_and(|f| f <= max)
+    };
+    // 32018X runs at 60 rpm, where the dynamic model costs ~20 s per simulated ms (F12): only
+    // its refusals.
+    if c.id.starts_with("32018X/") {
+        return c.group == "out-of-range";
+    }
+    !what.contains("standstill")
+        && match c.group {
+            "load-axial" | "load-radial" | "load-radial-held" | "load-combined" => load(0.1),
+            "speed" => what
+                .strip_suffix("n_lim")
+                .and_then(|f| f.parse::<f64>().ok())
+                .is_some_and(|f| f.abs() <= 0.3),
+            "unloaded" | "out-of-range" => true,
+            "dynamic" => what.contains("kinematic cage") || what.contains("unloaded rollers"),
+            _ => false,
+        }
+}
+
 #[test]
-fn fidelity_1_cases_are_listed_and_run_without_failure() {
-    let f0 = matrix::cases(0, true);
+fn fidelity_1_quick_subset_has_no_new_failures() {
     let f1 = matrix::cases(1, true);
-    assert_eq!(f0.len(), f1.len(), "fidelity 1 runs the same list");
+    assert!(f1.len() >= 200, "only {} fidelity-1 cases", f1.len());
     assert!(f1
         .iter()
         .all(|c| c.params.first() == Some(&("fidelity", matrix::Value::Integer(1)))));
-    // One step of one case on the smallest preset must neither crash nor emit NaN: the
-    // dynamic model is costly in stiff and fast cases (docs/robustness.md, "What is left");
-    // the full list, with all checks, runs with `stress --fidelity 1`.
-    let presets = matrix::presets();
-    for c in f1.iter().filter(|c| c.id == "32008/load-combined/0.1C0") {
-        let c = matrix::Case { steps: 1, ..c.clone() };
-        let r = matrix::run_on_simulation(&c, &presets);
-        let crashed = |why: &str| why.contains("panic") || why.contains("non-finite");
-        assert!(
-            !matches!(&r.outcome, matrix::Outcome::Failed { reason } if crashed(reason)),
-            "{}: {:?}",
-            c.id,
-            r.outcome
-        );
-    }
+    let cases: Vec<matrix::Case> = f1.into_iter().filter(ci_subset).collect();
+    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress-1");
+    let started = std::time::Instant::now();
+    let run = matrix::Run::execute(cases, threads(), &scratch);
+    let failures = run.failures();
+    eprintln!(
+        "fidelity 1: {} cases in {:.1} s: {} passed, {} refused with a clear message, {} FAILED ({} known); FMU subset {} cases",
+        run.cases.len(),
+        started.elapsed().as_secs_f64(),
+        run.count("passed"),
+        run.count("refused"),
+        failures.len(),
+        KNOWN_1.len(),
+        run.fmu.len()
+    );
+    let is_known = |f: &str| KNOWN_1.iter().any(|(id, why)| f.starts_with(&format!("{id}: ")) && f.contains(why));
+    let new: Vec<&String> = failures.iter().filter(|f| !is_known(f)).collect();
+    assert!(
+        new.is_empty(),
+        "new fidelity-1 stress failures:\n{}",
+        new.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n")
+    );
+    assert_eq!(run.count("not available"), 0);
+    assert!(run.cases.len() >= 40 && run.count("passed") > run.cases.len() / 3);
+    assert!(
+        run.count("refused") > 0,
+        "the subset includes refusals (their messages are checked)"
+    );
 }
 
 #[test]

@@ -31,6 +31,13 @@ pub struct StressArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Extra parameter for every case, `name=value` (repeatable; for experiments: the
+    /// document is not written). Integer parameters take an integer, Booleans true/false.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// Print every case (id, outcome, wall time) to stderr as it ends.
+    #[arg(long, short)]
+    pub verbose: bool,
     /// Only cases whose id contains this text (the document is not written).
     #[arg(long)]
     pub filter: Option<String>,
@@ -50,12 +57,49 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
     if let Some(filter) = &args.filter {
         cases.retain(|c| c.id.contains(filter.as_str()));
     }
+    for set in &args.set {
+        let (name, value) = set
+            .split_once('=')
+            .ok_or_else(|| CliError::invalid(format!("--set {set}: expected NAME=VALUE")))?;
+        let name: &'static str = trb::variables::TABLE
+            .iter()
+            .find(|v| v.name == name)
+            .map(|v| v.name)
+            .ok_or_else(|| CliError::invalid(format!("--set {set}: no parameter {name}")))?;
+        let value = if let Ok(i) = value.parse::<i32>() {
+            matrix::Value::Integer(i)
+        } else if let Ok(b) = value.parse::<bool>() {
+            matrix::Value::Boolean(b)
+        } else {
+            matrix::Value::Real(value.parse().map_err(|_| CliError::invalid(format!("--set {set}: not a value")))?)
+        };
+        for c in &mut cases {
+            c.params.retain(|(n, _)| *n != name);
+            c.params.push((name, value));
+        }
+    }
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
     let scratch = std::env::temp_dir().join(format!("trb-stress-{}", std::process::id()));
     println!("running {} cases on {threads} threads ...", cases.len());
-    let run = matrix::Run::execute(cases, threads, &scratch);
+    let total = cases.len() + cases.iter().filter(|c| c.fmu).count();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let verbose = args.verbose;
+    let run = matrix::Run::execute_with(cases, threads, &scratch, |c, r, fmu| {
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if verbose {
+            eprintln!(
+                "[{k}/{total} {:.0} s] {}{}: {} after {} steps, {:.1} s",
+                started.elapsed().as_secs_f64(),
+                c.id,
+                if fmu { " (FMU)" } else { "" },
+                r.outcome.label(),
+                r.steps,
+                r.seconds
+            );
+        }
+    });
     let _ = std::fs::remove_dir_all(&scratch);
 
     let failures = run.failures();
@@ -76,7 +120,7 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
     slow.sort_by(|a, b| b.0.total_cmp(&a.0));
     let shown: Vec<String> = slow.iter().take(5).map(|(s, id)| format!("{id} {s:.1} s")).collect();
     println!("slowest: {}", shown.join(", "));
-    if args.filter.is_none() {
+    if args.filter.is_none() && args.set.is_empty() {
         let mut command = "cargo run --release -- stress".to_string();
         if args.quick {
             command.push_str(" --quick");
@@ -85,8 +129,8 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
             let f: Vec<String> = args.fidelity.iter().map(|f| f.to_string()).collect();
             command.push_str(&format!(" --fidelity {}", f.join(",")));
         }
-        let generated = matrix::report(&run, &command);
-        write_section(&args.out, &generated)?;
+        let (header, parts) = matrix::report(&run, &command);
+        write_section(&args.out, &header, &parts)?;
         println!("wrote {}", args.out.display());
     }
     if failures.is_empty() {
@@ -96,9 +140,33 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
     }
 }
 
-/// Replace the generated section of `path` (between the markers) with `generated`.
-fn write_section(path: &std::path::Path, generated: &str) -> Result<(), CliError> {
+/// Replace the generated section of `path` (between the markers) with `header` and, per
+/// fidelity, the new part if it ran, else the part the document already has (so
+/// `--fidelity 1` keeps the fidelity-0 results and the other way round).
+fn write_section(path: &std::path::Path, header: &str, parts: &[(i32, String)]) -> Result<(), CliError> {
     let old = std::fs::read_to_string(path).unwrap_or_default();
+    let old_section = match (old.find(BEGIN), old.find(END)) {
+        (Some(b), Some(e)) if e > b => &old[b..e],
+        _ => "",
+    };
+    let mut generated = header.trim_end().to_string();
+    for f in 0..=1 {
+        let (begin, end) = (
+            format!("<!-- stress:fidelity-{f}:begin -->"),
+            format!("<!-- stress:fidelity-{f}:end -->"),
+        );
+        let part = match parts.iter().find(|(g, _)| *g == f) {
+            Some((_, text)) => Some(format!("{begin}\n{}\n{end}", text.trim_end())),
+            None => match (old_section.find(&begin), old_section.find(&end)) {
+                (Some(b), Some(e)) if e > b => Some(old_section[b..e + end.len()].to_string()),
+                _ => None,
+            },
+        };
+        if let Some(part) = part {
+            generated.push_str("\n\n");
+            generated.push_str(&part);
+        }
+    }
     let section = format!("{BEGIN}\n{generated}\n{END}");
     let text = match (old.find(BEGIN), old.find(END)) {
         (Some(b), Some(e)) if e > b => format!("{}{section}{}", &old[..b], &old[e + END.len()..]),

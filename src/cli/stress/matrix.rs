@@ -210,6 +210,11 @@ pub struct Case {
     pub why: Option<&'static str>,
     /// Also run through the FMU's C ABI (and compare bitwise with `Simulation`).
     pub fmu: bool,
+    /// Time-averaged balances over the second half of the run (the inputs must be constant
+    /// there), to this relative tolerance: mean `powerLoss` = mean `frictionTorque × speed`
+    /// (what drives the cone is dissipated: the stored kinetic and elastic energy is
+    /// bounded) and, in force preload of a tapered bearing, mean `reaction.Fx` = `Fx`.
+    pub average: Option<f64>,
 }
 
 /// Simulated durations of the time-dependent cases, per fidelity.
@@ -236,15 +241,19 @@ impl Durations {
                 transient: 0.2,
                 short_steps: 3,
             },
+            // The dynamic model costs ~0.05 s (operating point, 0.1 C0) to ~40 s (load
+            // steps, near the limiting speed) of wall time per simulated ms with Rosenbrock-W
+            // at 1e-4 on this machine: one 1 s long run per preset at its operating speed, 3 ms
+            // transients, 2-step constant cases (docs/robustness.md, section 6).
             (_, false) => Durations {
                 long: 1.0,
-                transient: 0.2,
-                short_steps: 5,
+                transient: 0.003,
+                short_steps: 2,
             },
             (_, true) => Durations {
-                long: 0.05,
-                transient: 0.02,
-                short_steps: 3,
+                long: 0.01,
+                transient: 0.002,
+                short_steps: 1,
             },
         }
     }
@@ -274,6 +283,15 @@ impl Builder<'_> {
         let mut all = Vec::new();
         if self.fidelity != 0 {
             all.push(("fidelity", Value::Integer(self.fidelity)));
+            // What a user runs at fidelity 1 unless the case says otherwise: the
+            // Rosenbrock-W integrator (2) at tolerance 1e-4 (the explicit default, 0, is
+            // stability-limited to ~10 us steps under load; see FIDELITY_1).
+            if !params.iter().any(|(n, _)| *n == "integrator") {
+                all.push(("integrator", Value::Integer(2)));
+            }
+            if !params.iter().any(|(n, _)| *n == "tolerance") {
+                all.push(("tolerance", Value::Real(1e-4)));
+            }
         }
         all.extend(params);
         self.out.push(Case {
@@ -289,6 +307,7 @@ impl Builder<'_> {
             expect,
             why: None,
             fmu: false,
+            average: None,
         });
     }
 
@@ -299,7 +318,8 @@ impl Builder<'_> {
         c.why = Some(why);
     }
 
-    /// Constant inputs for a few steps of 1 ms.
+    /// Constant inputs for a few steps of 1 ms (at fidelity 1 and standstill, of 1 us: see
+    /// [`Builder::standstill`]).
     fn constant(
         &mut self,
         group: &'static str,
@@ -308,9 +328,26 @@ impl Builder<'_> {
         inputs: Vec<(&'static str, f64)>,
         expect: Expect,
     ) {
+        let speed = inputs.iter().find(|(n, _)| *n == "speed").map_or(self.p.speed, |(_, v)| *v);
         let inputs = inputs.into_iter().map(|(n, v)| (n, Signal::Const(v))).collect();
         let steps = self.d.short_steps;
-        self.push(group, what, params, inputs, 1e-3, steps, expect);
+        let (what, h) = if self.standstill(speed) {
+            (format!("{what} (0.1 us steps: standstill, F11)"), 1e-7)
+        } else {
+            (what, 1e-3)
+        };
+        self.push(group, what, params, inputs, h, steps, expect);
+    }
+
+    /// At fidelity 1 the dynamic model crawls at (near) standstill (steps of ~1 ns, F11 in
+    /// docs/robustness.md): such cases run 0.1 us communication steps there.
+    fn standstill(&self, speed: f64) -> bool {
+        self.fidelity == 1 && speed.abs() <= 1e-3 * self.p.n_lim
+    }
+
+    /// Check the time-averaged balances of the last case (fidelity 1).
+    fn last_average(&mut self, tol: f64) {
+        self.out.last_mut().expect("a case").average = Some(tol);
     }
 
     /// A moderate combined load: Fr = f C0 at 30 deg from y towards z, Fx seating it.
@@ -373,8 +410,10 @@ pub fn cases(fidelity: i32, quick: bool) -> Vec<Case> {
     // The representative subset that also runs through the FMU: the first case of every
     // group of every preset, and every long run.
     let mut seen = std::collections::HashSet::new();
+    // At fidelity 1 the long runs cost minutes: only the smallest preset's go through the FMU.
     for c in &mut all {
-        if seen.insert((c.preset, c.group)) || c.group == "long" {
+        let long = c.group == "long" && (c.fidelity == 0 || c.id.starts_with("32008/"));
+        if (seen.insert((c.preset, c.group)) && (c.group != "long" || long)) || long {
             c.fmu = true;
         }
     }
@@ -462,40 +501,47 @@ fn preset_cases(b: &mut Builder) {
         v
     };
     let base = load(b, 0.1);
+    // Through standstill the dynamic model crawls (F11): at fidelity 1 these run 6 steps of
+    // 0.1 us (a brutal run-up, but the same shape).
+    let (ts, hs, ns, note) = if b.fidelity == 1 {
+        (6e-7, 1e-7, 6, " (6 x 0.1 us: standstill, F11)")
+    } else {
+        (t, h, n, "")
+    };
     b.push(
         "transient",
-        "run-up from rest to n_lim".into(),
+        format!("run-up from rest to n_lim{note}"),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, 0.0, t, p.n_lim))]),
-        h,
-        n,
+        with(base.clone(), vec![("speed", ramp(0.0, 0.0, ts, p.n_lim))]),
+        hs,
+        ns,
         Expect::Pass,
     );
     b.push(
         "transient",
-        "run-up from rest to 2 n_lim".into(),
+        format!("run-up from rest to 2 n_lim{note}"),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, 0.0, t, 2.0 * p.n_lim))]),
-        h,
-        n,
+        with(base.clone(), vec![("speed", ramp(0.0, 0.0, ts, 2.0 * p.n_lim))]),
+        hs,
+        ns,
         Expect::PassOrRefuse,
     );
     b.push(
         "transient",
-        "sudden stop from n_lim".into(),
+        format!("sudden stop from n_lim{note}"),
         vec![],
-        with(base.clone(), vec![("speed", jump(0.5 * t, h, p.n_lim, 0.0))]),
-        h,
-        n,
+        with(base.clone(), vec![("speed", jump(0.5 * ts, hs, p.n_lim, 0.0))]),
+        hs,
+        ns,
         Expect::Pass,
     );
     b.push(
         "transient",
-        "reversal +n_lim to -n_lim".into(),
+        format!("reversal +n_lim to -n_lim{note}"),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, p.n_lim, t, -p.n_lim))]),
-        h,
-        n,
+        with(base.clone(), vec![("speed", ramp(0.0, p.n_lim, ts, -p.n_lim))]),
+        hs,
+        ns,
         Expect::Pass,
     );
     b.push(
@@ -649,7 +695,13 @@ fn preset_cases(b: &mut Builder) {
     for h in [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.1] {
         let mut inputs: Vec<(&'static str, Signal)> = b.combined(0.1).into_iter().map(|(n, v)| (n, Signal::Const(v))).collect();
         inputs.push(("xi", Signal::Const(deg(0.02))));
-        b.push("step-size", format!("h = {h:e} s"), vec![], inputs, h, 10, Expect::Pass);
+        // At fidelity 1 the long steps run 2 (0.1 s) or 3 (0.01 s) steps: minutes of wall time.
+        let steps = match b.fidelity {
+            1 if h >= 0.1 => 2,
+            1 if h >= 0.01 => 3,
+            _ => 10,
+        };
+        b.push("step-size", format!("h = {h:e} s"), vec![], inputs, h, steps, Expect::Pass);
     }
 
     // --- Very few and very many slices.
@@ -691,6 +743,8 @@ fn preset_cases(b: &mut Builder) {
             Expect::Pass,
         );
         let inputs = b.combined(0.1).into_iter().map(|(n, v)| (n, Signal::Const(v))).collect();
+        // at fidelity 1: 50 ms (1 s at 1 ms steps restarts the integrator 1000 times)
+        let t = if b.fidelity == 1 { 0.05 * t } else { t };
         b.push(
             "long",
             format!("{t} s, h = 1 ms, constant"),
@@ -765,6 +819,12 @@ fn preset_cases(b: &mut Builder) {
         with_speed(&zero, p.speed),
         if tapered { Expect::PassOrRefuse } else { Expect::Pass },
     );
+
+    // --- Dynamic model only: energy balance, rollers and cage accelerating from rest,
+    // skidding at light load, cage impacts, unloaded rollers, each integrator.
+    if b.fidelity == 1 {
+        dynamic_cases(b);
+    }
 
     // --- Parameters at the ends of their ranges, with a moderate combined load.
     let mut params: Vec<(String, Vec<(&'static str, Value)>, Expect)> = vec![
@@ -915,6 +975,198 @@ fn preset_cases(b: &mut Builder) {
         Expect::Refuse,
     );
     b.last_expect(Expect::Refuse, "parameter tolerance");
+}
+
+/// Cases of the dynamic model only (fidelity 1), 1 ms steps over the transient duration.
+fn dynamic_cases(b: &mut Builder) {
+    let p = b.p.clone();
+    let tapered = p.tapered();
+    let h = 1e-3;
+    let t = b.d.transient;
+    let n = steps_for(t, h);
+    let consts =
+        |v: Vec<(&'static str, f64)>| -> Vec<(&'static str, Signal)> { v.into_iter().map(|(n, v)| (n, Signal::Const(v))).collect() };
+    let at_speed = |mut v: Vec<(&'static str, f64)>, speed: f64| {
+        v.retain(|(n, _)| *n != "speed");
+        v.push(("speed", speed));
+        v
+    };
+    // The averaged balances need 40 steps (20 averaged); the quick list runs them short
+    // (unchecked).
+    let energy = 0.03;
+    let n_avg = if b.d.long >= 1.0 { 40 } else { n };
+    b.push(
+        "dynamic",
+        "energy balance, 0.1 C0 combined, constant".into(),
+        vec![],
+        consts(b.combined(0.1)),
+        h,
+        n_avg,
+        Expect::Pass,
+    );
+    b.last_average(energy);
+    b.push(
+        "dynamic",
+        "energy balance, 0.3 C0 combined, xi 0.05 deg".into(),
+        vec![],
+        consts({
+            let mut v = b.combined(0.3);
+            v.push(("xi", 0.05f64.to_radians()));
+            v
+        }),
+        h,
+        n_avg,
+        Expect::Pass,
+    );
+    b.last_average(energy);
+    b.push(
+        "dynamic",
+        "rollers and cage start at rest (startFromRest), cone at the operating speed".into(),
+        vec![("startFromRest", Value::Boolean(true))],
+        consts(b.combined(0.1)),
+        h,
+        n,
+        Expect::Pass,
+    );
+    b.push(
+        "dynamic",
+        "startFromRest, cone ramped 0.01 to 1 n_lim".into(),
+        vec![("startFromRest", Value::Boolean(true))],
+        {
+            let mut v = consts(b.combined(0.1));
+            v.retain(|(n, _)| *n != "speed");
+            v.push(("speed", ramp(0.0, 0.01 * p.n_lim, t, p.n_lim)));
+            v
+        },
+        h,
+        n,
+        Expect::Pass,
+    );
+    // Light load at the limiting speed: the rollers skid; the axial force keeps a tapered
+    // bearing seated against the rollers' centrifugal force.
+    let light = |b: &Builder, f: f64| {
+        let mut v = b.combined(f);
+        if tapered {
+            for (name, x) in v.iter_mut() {
+                if *name == "Fx" {
+                    *x += 2.0 * p.seating_fx_min(p.n_lim);
+                }
+            }
+        }
+        at_speed(v, p.n_lim)
+    };
+    b.push(
+        "dynamic",
+        "light load 0.001 C0 at n_lim (skidding)".into(),
+        vec![],
+        consts(light(b, 0.001)),
+        h,
+        n,
+        Expect::Pass,
+    );
+    b.push(
+        "dynamic",
+        "light load at n_lim, rollers from rest (skidding run-up)".into(),
+        vec![("startFromRest", Value::Boolean(true))],
+        consts(light(b, 0.001)),
+        h,
+        n,
+        Expect::Pass,
+    );
+    // Cage impacts: a rotating light load drives the rollers through the load zone and the
+    // cage against them; small and large pocket clearance.
+    for (what, clearance) in [("pocket clearance 0.01 mm", 1e-5), ("pocket clearance 1 mm", 1e-3)] {
+        let fr = 0.01 * p.c0;
+        let w = 3.0 * std::f64::consts::TAU / t;
+        b.push(
+            "dynamic",
+            format!("cage impacts: rotating 0.01 C0 at n_lim, {what}"),
+            vec![("cage.pocketClearance", Value::Real(clearance))],
+            vec![
+                ("Fy", sampled(t, 100, move |s| fr * (w * s).cos())),
+                ("Fz", sampled(t, 100, move |s| fr * (w * s).sin())),
+                (
+                    "Fx",
+                    Signal::Const(if tapered {
+                        p.seating_fx(fr) + 2.0 * p.seating_fx_min(p.n_lim)
+                    } else {
+                        0.0
+                    }),
+                ),
+                ("speed", Signal::Const(p.n_lim)),
+            ],
+            h,
+            n,
+            Expect::Pass,
+        );
+    }
+    // Unloaded rollers under a pure radial load: the cone held axially (tapered) or a
+    // cylindrical bearing with clearance: half the rollers or more out of the load zone.
+    let radial = |f: f64| vec![("Fy", f * p.c0), ("Fz", 0.0), ("speed", p.speed)];
+    if tapered {
+        let mut v = radial(0.05);
+        v.push(("axialDisplacement", 0.0));
+        b.push(
+            "dynamic",
+            "pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)".into(),
+            vec![("preload", Value::Integer(1))],
+            consts(v),
+            h,
+            n_avg,
+            Expect::Pass,
+        );
+        b.last_average(energy);
+        let mut v = radial(0.0);
+        v.push(("axialDisplacement", -0.005 * p.bearing.roller_mean_diameter));
+        b.push(
+            "dynamic",
+            "no load, cone pulled back 0.5 % D (every roller unloaded)".into(),
+            vec![("preload", Value::Integer(1))],
+            consts(v),
+            h,
+            n,
+            Expect::Pass,
+        );
+    } else {
+        b.push(
+            "dynamic",
+            "pure radial 0.05 C0 (unloaded rollers)".into(),
+            vec![],
+            consts(radial(0.05)),
+            h,
+            n_avg,
+            Expect::Pass,
+        );
+        b.last_average(energy);
+        b.push(
+            "dynamic",
+            "pure radial 0.001 C0, clearance 1 % D (few loaded rollers)".into(),
+            vec![("clearance", Value::Real(0.01 * p.bearing.roller_mean_diameter))],
+            consts(radial(0.001)),
+            h,
+            n,
+            Expect::Pass,
+        );
+    }
+    // The other integrators and a kinematic cage, at 0.1 C0 (the explicit ones are
+    // stability-limited under heavy load: that is the user's choice of integrator 2).
+    let short = 2;
+    for (what, params) in [
+        (
+            "integrator 0 (Dormand-Prince, the default) at tolerance 1e-6",
+            vec![("integrator", Value::Integer(0)), ("tolerance", Value::Real(1e-6))],
+        ),
+        (
+            "integrator 1 (Milne-Hamming) at maxStep 1e-6",
+            vec![("integrator", Value::Integer(1)), ("maxStep", Value::Real(1e-6))],
+        ),
+        (
+            "kinematic cage (cage.dynamic = false)",
+            vec![("cage.dynamic", Value::Boolean(false))],
+        ),
+    ] {
+        b.push("dynamic", what.into(), params, consts(b.combined(0.1)), h, short, Expect::Pass);
+    }
 }
 
 fn with_speed(inputs: &[(&'static str, f64)], speed: f64) -> Vec<(&'static str, f64)> {
@@ -1221,7 +1473,9 @@ pub fn clarity(message: &str) -> Result<(), String> {
         return Err(format!("internal error: {m}"));
     }
     let names_variable = m.contains("input ") || m.contains("parameter ") || m.contains("value reference");
-    let gives_reason = m.contains("no quasi-static equilibrium") && m.contains("; ");
+    // The dynamic integrator's refusals: a reason after the statistics, or the step budget.
+    let gives_reason = (m.contains("no quasi-static equilibrium") && m.contains("; "))
+        || (m.contains("dynamic integration failed") && (m.contains("; ") || m.contains("steps in one communication interval")));
     if names_variable || gives_reason {
         Ok(())
     } else {
@@ -1340,6 +1594,8 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
     if let Err(r) = el.initialize(t0) {
         return refused(el, t0, r, &mut rv, &mut iv);
     }
+    // (frictionTorque x speed, powerLoss, reaction.Fx, Fx) after every step
+    let mut samples: Vec<(f64, f64, f64, Option<f64>)> = Vec::new();
     // Step k: inputs at u(t_k), doStep(t_k, h), outputs at t_{k+1} (an FMI master's loop).
     for k in 0..=case.steps {
         let t = t0 + k as f64 * case.h;
@@ -1364,6 +1620,9 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
                 reason: format!("t = {t}: {reason}"),
             };
         }
+        if k > 0 {
+            samples.push((speed_of(tu).unwrap_or(f64::NAN) * rv[i_torque], rv[i_power], rv[i_rfx], fx_of(tu)));
+        }
         rec.qo_max = rec.qo_max.max(rv[i_qo]);
         rec.residual_max = rec.residual_max.max(rv[i_res]);
         rec.loaded_min = rec.loaded_min.min(iv[i_loaded]);
@@ -1385,6 +1644,30 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
         return Outcome::Failed {
             reason: "accepted a case outside the model's range without complaint".into(),
         };
+    }
+    // (at least 20 steps in the second half, else the start transient dominates: not checked)
+    if let Some(tol) = case.average.filter(|_| samples.len() >= 40) {
+        let tail = &samples[samples.len() / 2..];
+        let n = tail.len() as f64;
+        let mean = |f: &dyn Fn(&(f64, f64, f64, Option<f64>)) -> f64| tail.iter().map(f).sum::<f64>() / n;
+        let (input, loss) = (mean(&|s| s.0), mean(&|s| s.1));
+        if !((input - loss).abs() <= tol * loss.abs().max(input.abs()) + 1e-9) {
+            return Outcome::Failed {
+                reason: format!(
+                    "energy balance on average over the last {n} steps: frictionTorque x speed {input:.6e} W, powerLoss {loss:.6e} W (tolerance {tol})"
+                ),
+            };
+        }
+        if tapered && force_preload {
+            if let Some(fx) = tail[0].3 {
+                let rfx = mean(&|s| s.2);
+                if !((rfx - fx).abs() <= tol * fx.abs().max(1.0)) {
+                    return Outcome::Failed {
+                        reason: format!("mean reaction.Fx {rfx:.6e} N over the last {n} steps but Fx = {fx:.6e} N (tolerance {tol})"),
+                    };
+                }
+            }
+        }
     }
     Outcome::Passed
 }
@@ -1491,12 +1774,26 @@ pub struct Run {
 }
 
 impl Run {
+    #[allow(dead_code)] // tests/stress.rs
     pub fn execute(cases: Vec<Case>, threads: usize, scratch: &Path) -> Run {
+        Run::execute_with(cases, threads, scratch, |_, _, _| {})
+    }
+
+    /// As [`Run::execute`], calling `progress(case, record, through the FMU)` as each run ends.
+    pub fn execute_with(cases: Vec<Case>, threads: usize, scratch: &Path, progress: impl Fn(&Case, &Record, bool) + Sync) -> Run {
         let presets = presets();
-        let sim = parallel_map(&cases, threads, |c| run_on_simulation(c, &presets));
+        let sim = parallel_map(&cases, threads, |c| {
+            let r = run_on_simulation(c, &presets);
+            progress(c, &r, false);
+            r
+        });
         let uris: Vec<String> = presets.iter().map(|p| resources_for(scratch, p.name()).1).collect();
         let subset: Vec<usize> = (0..cases.len()).filter(|i| cases[*i].fmu).collect();
-        let fmu_records = parallel_map(&subset, threads, |i| run_on_fmu(&cases[*i], &presets, &uris));
+        let fmu_records = parallel_map(&subset, threads, |i| {
+            let r = run_on_fmu(&cases[*i], &presets, &uris);
+            progress(&cases[*i], &r, true);
+            r
+        });
         let fmu = subset.into_iter().zip(fmu_records).collect();
         Run { presets, cases, sim, fmu }
     }
@@ -1559,12 +1856,14 @@ fn md_cell(s: &str) -> String {
     }
 }
 
-/// The generated part of docs/robustness.md (deterministic: no timings).
-pub fn report(run: &Run, command: &str) -> String {
+/// The generated part of docs/robustness.md (deterministic: no timings): the reference
+/// values, and one part per fidelity that ran (the `stress` command keeps the parts of the
+/// fidelities it did not run).
+pub fn report(run: &Run, command: &str) -> (String, Vec<(i32, String)>) {
     use std::fmt::Write as _;
     let mut s = String::new();
     let fids: std::collections::BTreeSet<i32> = run.cases.iter().map(|c| c.fidelity).collect();
-    let _ = writeln!(s, "Generated by `{command}`; do not edit by hand.\n");
+    let _ = writeln!(s, "Generated by the `stress` command; do not edit by hand.\n");
     let _ = writeln!(s, "### Reference values per preset\n");
     let _ = writeln!(
         s,
@@ -1588,111 +1887,129 @@ pub fn report(run: &Run, command: &str) -> String {
             p.speed * rpm
         );
     }
-    let _ = writeln!(s, "\n### Summary\n");
-    let _ = writeln!(
-        s,
-        "| fidelity | preset | cases | passed | refused (clear message) | not available | FAILED |"
-    );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
-    for f in &fids {
-        for (pi, p) in run.presets.iter().enumerate() {
-            let recs: Vec<&Record> = run
-                .cases
-                .iter()
-                .zip(&run.sim)
-                .filter(|(c, _)| c.fidelity == *f && c.preset == pi)
-                .map(|(_, r)| r)
-                .collect();
-            let n = |l: &str| recs.iter().filter(|r| r.outcome.label() == l).count();
-            let _ = writeln!(
-                s,
-                "| {f} | {} | {} | {} | {} | {} | {} |",
-                p.name(),
-                recs.len(),
-                n("passed"),
-                n("refused"),
-                n("not available"),
-                n("FAILED")
-            );
-        }
+    let parts = fids.iter().map(|f| (*f, fidelity_report(run, *f, command))).collect();
+    (s, parts)
+}
+
+fn fidelity_report(run: &Run, f: i32, command: &str) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let of_f: Vec<usize> = (0..run.cases.len()).filter(|i| run.cases[*i].fidelity == f).collect();
+    let _ = writeln!(s, "### Fidelity {f}\n");
+    let _ = writeln!(s, "Generated by `{command}`.\n");
+    if f == 1 {
+        let _ = writeln!(
+            s,
+            "Every fidelity-1 case runs the Rosenbrock-W integrator (`integrator` = 2) at `tolerance` = 1e-4 unless its name says otherwise; cases at standstill run 1 µs steps (F11).\n"
+        );
+    }
+    let _ = writeln!(s, "| preset | cases | passed | refused (clear message) | not available | FAILED |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    let count = |idx: &[usize], l: &str| idx.iter().filter(|i| run.sim[**i].outcome.label() == l).count();
+    for (pi, p) in run.presets.iter().enumerate() {
+        let idx: Vec<usize> = of_f.iter().copied().filter(|i| run.cases[*i].preset == pi).collect();
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            p.name(),
+            idx.len(),
+            count(&idx, "passed"),
+            count(&idx, "refused"),
+            count(&idx, "not available"),
+            count(&idx, "FAILED")
+        );
     }
     let _ = writeln!(
         s,
-        "| all | all | **{}** | **{}** | **{}** | **{}** | **{}** |",
-        run.cases.len(),
-        run.count("passed"),
-        run.count("refused"),
-        run.count("not available"),
-        run.count("FAILED")
+        "| all | **{}** | **{}** | **{}** | **{}** | **{}** |",
+        of_f.len(),
+        count(&of_f, "passed"),
+        count(&of_f, "refused"),
+        count(&of_f, "not available"),
+        count(&of_f, "FAILED")
     );
-    let steps: usize = run.sim.iter().map(|r| r.steps).sum();
-    let fmu_bad = run.fmu.iter().filter(|(i, r)| run.fmu_mismatch(*i, r).is_some()).count();
+    let steps: usize = of_f.iter().map(|i| run.sim[*i].steps).sum();
+    let fmu: Vec<&(usize, Record)> = run.fmu.iter().filter(|(i, _)| run.cases[*i].fidelity == f).collect();
+    let fmu_bad = fmu.iter().filter(|(i, r)| run.fmu_mismatch(*i, r).is_some()).count();
     let _ = writeln!(
         s,
-        "\n{steps} communication steps in all. Through the FMU's C ABI: {} of the cases (the first of every group of every preset, and the long runs), each compared bitwise with the `Simulation` run: {} differ or fail.\n",
-        run.fmu.len(),
+        "\n{steps} communication steps in all. Through the FMU's C ABI: {} of the cases (the first of every group of every preset, and the long runs{}), each compared bitwise with the `Simulation` run: {} differ or fail.\n",
+        fmu.len(),
+        if f == 1 { " of 32008" } else { "" },
         fmu_bad
     );
-    let failures = run.failures();
+    let failures: Vec<String> = run
+        .failures()
+        .into_iter()
+        .filter(|x| {
+            of_f.iter()
+                .any(|i| x.starts_with(&format!("{}: ", run.cases[*i].id)) || x.starts_with(&format!("{} (FMU): ", run.cases[*i].id)))
+        })
+        .collect();
     if !failures.is_empty() {
-        let _ = writeln!(s, "### Failures\n");
-        for f in &failures {
-            let _ = writeln!(s, "- {}", md_cell(f));
+        let _ = writeln!(s, "#### Failures (fidelity {f})\n");
+        for x in &failures {
+            let _ = writeln!(s, "- {}", md_cell(x));
         }
         s.push('\n');
     }
-    let _ = writeln!(s, "### Every case\n");
+    let _ = writeln!(s, "#### Every case (fidelity {f})\n");
     let _ = writeln!(
         s,
         "Columns: expectation, outcome, successful steps × step size, largest cup contact load Qo.max, fewest loaded rollers, largest relative solver residual; for refusals the time and the message (fmi2Discard or fmi2Error).\n"
     );
     let fmu_of: std::collections::HashMap<usize, &Record> = run.fmu.iter().map(|(i, r)| (*i, r)).collect();
-    let mut group = ("", usize::MAX, -1);
-    for (i, (c, r)) in run.cases.iter().zip(&run.sim).enumerate() {
-        if (c.group, c.preset, c.fidelity) != group {
-            group = (c.group, c.preset, c.fidelity);
-            let _ = writeln!(
-                s,
-                "\n#### {} · {} · fidelity {}\n",
-                run.presets[c.preset].name(),
-                c.group,
-                c.fidelity
-            );
-            let _ = writeln!(
-                s,
-                "| case | expect | outcome | steps × h | Qo.max (N) | min loaded | residual | FMU | detail |"
-            );
-            let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    // One table per preset and group, in the order the groups first appear.
+    let mut order: Vec<(usize, &str)> = Vec::new();
+    for i in &of_f {
+        let key = (run.cases[*i].preset, run.cases[*i].group);
+        if !order.contains(&key) {
+            order.push(key);
         }
-        let detail = match &r.outcome {
-            Outcome::Passed => String::new(),
-            Outcome::Refused { at, discard, message } => {
-                format!("t = {at}: {} {}", if *discard { "fmi2Discard:" } else { "fmi2Error:" }, message)
-            }
-            Outcome::NotAvailable { message } => message.clone(),
-            Outcome::Failed { reason } => reason.clone(),
-        };
-        let fmu = match fmu_of.get(&i) {
-            None => "",
-            Some(fr) => match run.fmu_mismatch(i, fr) {
-                None => "same",
-                Some(_) => "DIFFERS",
-            },
-        };
+    }
+    for (preset, group) in order {
+        let _ = writeln!(s, "\n##### {} · {} · fidelity {f}\n", run.presets[preset].name(), group);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} × {:e} s | {:.4e} | {} | {:.1e} | {} | {} |",
-            md_cell(&c.what),
-            c.expect.label(),
-            r.outcome.label(),
-            r.steps,
-            c.h,
-            r.qo_max,
-            r.loaded_min,
-            r.residual_max,
-            fmu,
-            md_cell(&detail)
+            "| case | expect | outcome | steps × h | Qo.max (N) | min loaded | residual | FMU | detail |"
         );
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+        for i in of_f
+            .iter()
+            .copied()
+            .filter(|i| run.cases[*i].preset == preset && run.cases[*i].group == group)
+        {
+            let (c, r) = (&run.cases[i], &run.sim[i]);
+            let detail = match &r.outcome {
+                Outcome::Passed => String::new(),
+                Outcome::Refused { at, discard, message } => {
+                    format!("t = {at}: {} {}", if *discard { "fmi2Discard:" } else { "fmi2Error:" }, message)
+                }
+                Outcome::NotAvailable { message } => message.clone(),
+                Outcome::Failed { reason } => reason.clone(),
+            };
+            let fmu = match fmu_of.get(&i) {
+                None => "",
+                Some(fr) => match run.fmu_mismatch(i, fr) {
+                    None => "same",
+                    Some(_) => "DIFFERS",
+                },
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} × {:e} s | {:.4e} | {} | {:.1e} | {} | {} |",
+                md_cell(&c.what),
+                c.expect.label(),
+                r.outcome.label(),
+                r.steps,
+                c.h,
+                r.qo_max,
+                r.loaded_min,
+                r.residual_max,
+                fmu,
+                md_cell(&detail)
+            );
+        }
     }
     s
 }
