@@ -405,6 +405,11 @@ pub fn cases(fidelity: i32, quick: bool) -> Vec<Case> {
             out: Vec::new(),
         };
         preset_cases(&mut b);
+        if fidelity == 1 && p.name() == "32018X" {
+            // At its 60 rpm the dynamic model costs ~20 s per simulated ms (F12): until that
+            // is fixed only the out-of-range cases (refused before any integration) run.
+            b.out.retain(|c| c.group == "out-of-range");
+        }
         all.extend(b.out);
     }
     // The representative subset that also runs through the FMU: the first case of every
