@@ -163,7 +163,7 @@ impl Dynamic {
         let ig = match params.integrator {
             1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
             2 => {
-                let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance).collect();
+                let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance.max(MIN_TOLERANCE)).collect();
                 let moving_x = g.axial && params.preload == Preload::Force;
                 let mut active = [true; NG];
                 for (k, v) in active.iter_mut().enumerate() {
@@ -306,13 +306,13 @@ impl Dynamic {
             let message = match f {
                 Failure::StepTooSmall { t, h } => format!(
                     "the step size fell to {h:.3e} s at t = {t:.9} s without meeting the tolerance {:.1e}; the contacts are too stiff or the state left the model's range",
-                    self.p.tolerance
+                    self.p.tolerance.max(MIN_TOLERANCE)
                 ),
                 Failure::NotFinite { t } => format!("the state became non-finite at t = {t:.9} s"),
                 Failure::TooManySteps { t, steps } => format!("more than {steps} steps in one communication interval (t = {t:.9} s)"),
                 Failure::FixedStepTooLong { t, h, estimate } => format!(
                     "the fixed step {h:.3e} s (maxStep) is unstable or too long: the local error estimate (Milne) is {estimate:.1e} times the tolerance {:.1e} at t = {t:.9} s; reduce maxStep",
-                    self.p.tolerance
+                    self.p.tolerance.max(MIN_TOLERANCE)
                 ),
             };
             ModelError::IntegratorFailure { message }
@@ -392,8 +392,12 @@ impl Dynamic {
 /// Absolute and relative tolerances per state component: positions to `tol` of a 10 um
 /// reference displacement, angles to the angle that moves a roller end by that much, speeds
 /// relative to the orbital surface speed and the spin.
+/// The dynamic integrators' tolerance floor: below it the error estimates are round-off of
+/// the state (positions of ~1e-5 m carried to 16 digits), and steps shrink without end.
+pub const MIN_TOLERANCE: f64 = 1e-10;
+
 fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
-    let tol = p.tolerance;
+    let tol = p.tolerance.max(MIN_TOLERANCE);
     let l_ref = 1e-5;
     let r_p = g.center[1];
     let wc_ref = c.cage_ratio.abs() * speed_ref;
