@@ -452,7 +452,11 @@ fn targets(d: &mut String, results: &[ScenarioResult], k: &Kernels, long: &[Long
             micro(b.direct)
         ),
         "≤ 0.2 µs".into(),
-        format!("{} ± {}", micro(b.added), micro(b.spread)),
+        if b.added < 0.0 {
+            format!("{} (measured {}: noise) ± {}", micro(0.0), micro(b.added), micro(b.spread))
+        } else {
+            format!("{} ± {}", micro(b.added), micro(b.spread))
+        },
         if b.added <= 0.2e-6 {
             if b.spread > 0.2e-6 { "met, within the resolution" } else { "met" }
         } else {
