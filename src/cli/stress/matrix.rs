@@ -1120,7 +1120,10 @@ fn dynamic_cases(b: &mut Builder) {
             n_avg,
             Expect::Pass,
         );
-        b.last_average(energy);
+        // No averaged energy balance here (F13): the rollers leaving and entering the load
+        // zone make the cage speed swing by ~0.8 % between 40 ms windows; the kinetic energy
+        // that moves in and out (~10 J) is ±250 W over such a window, more than 3 % of the
+        // ~1.3 kW dissipated. Over 40..200 ms the balance closes to ~2 %.
         let mut v = radial(0.0);
         v.push(("axialDisplacement", -0.005 * p.bearing.roller_mean_diameter));
         b.push(
