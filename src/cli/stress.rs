@@ -167,11 +167,5 @@ fn write_section(path: &std::path::Path, header: &str, parts: &[(i32, String)]) 
             generated.push_str(&part);
         }
     }
-    let section = format!("{BEGIN}\n{generated}\n{END}");
-    let text = match (old.find(BEGIN), old.find(END)) {
-        (Some(b), Some(e)) if e > b => format!("{}{section}{}", &old[..b], &old[e + END.len()..]),
-        _ if old.is_empty() => format!("# Robustness\n\n{section}\n"),
-        _ => format!("{}\n{section}\n", old.trim_end()),
-    };
-    std::fs::write(path, text).map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))
+    super::report::replace_section(path, BEGIN, END, "Robustness", &generated)
 }
