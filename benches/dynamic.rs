@@ -9,8 +9,7 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use trb::bearing::Bearing;
 use trb::dynamic::Dynamic;
-use trb::model::{Fidelity, Inputs, Outputs, Parameters};
-use trb::quasi_static::QuasiStatic;
+use trb::model::{Fidelity, Inputs, Parameters};
 
 /// One right-hand side at the quasi-static start state with radial load `fy`.
 fn rhs(fy: f64) -> impl FnMut() {
@@ -19,12 +18,7 @@ fn rhs(fy: f64) -> impl FnMut() {
     p.fidelity = Fidelity::Dynamic;
     let mut i = Inputs::from_bearing(&b);
     i.fy = fy;
-    let mut qs = QuasiStatic::new(&b, &p).unwrap();
-    let mut out = Outputs::new(b.roller_count);
-    let mut x = Vec::new();
-    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-    let mut d = Dynamic::new(&b, &p).unwrap();
-    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let (mut d, st) = Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
     let mut dy = vec![0.0; st.y.len()];
     move || {
         d.rhs(&i, &st.y, &mut dy);

@@ -190,6 +190,19 @@ impl Dynamic {
         ROLLERS + PER_ROLLER * self.g.z
     }
 
+    /// A dynamic model of `bearing` and its state at t = 0 started from the quasi-static
+    /// solution for `inputs` (cage angle 0): what kernels, benchmarks and tests need to
+    /// evaluate the right-hand side directly.
+    pub fn at_quasi_static_start(bearing: &Bearing, params: &Parameters, inputs: &Inputs) -> Result<(Dynamic, DynamicState), ModelError> {
+        let mut qs = QuasiStatic::new(bearing, params)?;
+        let mut out = Outputs::new(bearing.roller_count);
+        let mut x = Vec::new();
+        qs.solve(inputs, 0.0, &mut x, &mut out)?;
+        let d = Dynamic::new(bearing, params)?;
+        let st = d.initial_state(&qs, &x, inputs, 0.0, 0.0);
+        Ok((d, st))
+    }
+
     /// Initial state from a converged quasi-static solution `x` (cone dx, dy, dz; per roller
     /// a, rho, theta L_s) at cage angle `cage_angle`, with epicyclic speeds; or at rest.
     pub fn initial_state(&self, qs: &QuasiStatic, x: &[f64], inputs: &Inputs, cage_angle: f64, t0: f64) -> DynamicState {

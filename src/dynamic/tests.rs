@@ -424,12 +424,7 @@ fn rhs_cost() {
     let mut p = crate::model::Parameters::from_bearing(&b);
     p.fidelity = crate::model::Fidelity::Dynamic;
     let i = crate::model::Inputs::from_bearing(&b);
-    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
-    let mut out = Outputs::new(b.roller_count);
-    let mut x = Vec::new();
-    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-    let mut d = super::Dynamic::new(&b, &p).unwrap();
-    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let (mut d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
     let mut dy = vec![0.0; st.y.len()];
     d.rhs(&i, &st.y, &mut dy);
     let t0 = std::time::Instant::now();
@@ -458,12 +453,7 @@ fn explore_spectrum() {
     if let Ok(v) = std::env::var("FY") {
         i.fy = v.parse().unwrap();
     }
-    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
-    let mut out = Outputs::new(b.roller_count);
-    let mut x = Vec::new();
-    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-    let mut d = super::Dynamic::new(&b, &p).unwrap();
-    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let (mut d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
     let n = st.y.len();
     let mut f0 = vec![0.0; n];
     d.rhs(&i, &st.y, &mut f0);

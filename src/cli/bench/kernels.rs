@@ -11,8 +11,7 @@ use trb::bearing::Bearing;
 use trb::dynamic::Dynamic;
 use trb::fmi::exports as fmi;
 use trb::fmi::types::{Fmi2CallbackFunctions, FMI2_CO_SIMULATION, FMI2_FALSE, FMI2_OK};
-use trb::model::{Fidelity, Inputs, Outputs, Parameters};
-use trb::quasi_static::QuasiStatic;
+use trb::model::{Fidelity, Inputs, Parameters};
 use trb::simulation::Simulation;
 
 /// Median seconds per call of `f`, from `samples` samples of `calls` calls each.
@@ -38,12 +37,7 @@ pub fn rhs_seconds(slices: usize, fy: f64, quick: bool) -> Result<f64, String> {
     p.slices = slices;
     let mut i = Inputs::from_bearing(&b);
     i.fy = fy;
-    let mut qs = QuasiStatic::new(&b, &p).map_err(|e| e.to_string())?;
-    let mut out = Outputs::new(b.roller_count);
-    let mut x = Vec::new();
-    qs.solve(&i, 0.0, &mut x, &mut out).map_err(|e| e.to_string())?;
-    let mut d = Dynamic::new(&b, &p).map_err(|e| e.to_string())?;
-    let st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let (mut d, st) = Dynamic::at_quasi_static_start(&b, &p, &i).map_err(|e| e.to_string())?;
     let mut dy = vec![0.0; st.y.len()];
     let (samples, calls) = if quick { (3, 20) } else { (15, 200) };
     Ok(per_call(samples, calls, || {
