@@ -76,6 +76,18 @@ pub enum Failure {
     FixedStepTooLong { t: f64, h: f64, estimate: f64 },
 }
 
+impl Failure {
+    /// After a rejected step: the proposed step `h` fell below the floor at `t`; the cause is
+    /// a non-finite stage when the step's values were not `finite`.
+    pub fn below_floor(finite: bool, t: f64, h: f64) -> Failure {
+        if finite {
+            Failure::StepTooSmall { t, h }
+        } else {
+            Failure::NotFinite { t }
+        }
+    }
+}
+
 /// Workspace and settings of the integrator.
 #[derive(Debug, Clone)]
 pub struct Dopri5 {
@@ -238,11 +250,7 @@ impl Dopri5 {
                 };
                 *h = hs * fac;
                 if *h < h_floor(*t) {
-                    return Err(if finite {
-                        Failure::StepTooSmall { t: *t, h: *h }
-                    } else {
-                        Failure::NotFinite { t: *t }
-                    });
+                    return Err(Failure::below_floor(finite, *t, *h));
                 }
             }
         }

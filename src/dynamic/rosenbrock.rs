@@ -311,11 +311,7 @@ impl RosenbrockW {
                     self.refresh_jacobian(sys, y, counters, memory);
                 }
                 if *h < h_floor(*t) {
-                    return Err(if finite {
-                        Failure::StepTooSmall { t: *t, h: *h }
-                    } else {
-                        Failure::NotFinite { t: *t }
-                    });
+                    return Err(Failure::below_floor(finite, *t, *h));
                 }
             }
         }

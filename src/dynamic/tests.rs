@@ -545,12 +545,8 @@ fn rhs_snapshot() {
         p.fidelity = Fidelity::Dynamic;
         let mut i = Inputs::from_bearing(&b);
         setup(&mut p, &mut i);
-        let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
+        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
         let mut out = Outputs::new(b.roller_count);
-        let mut x = Vec::new();
-        qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-        let mut d = super::Dynamic::new(&b, &p).unwrap();
-        let mut st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
         for t_end in [0.0, 1e-3] {
             if name == "d19" && t_end > 0.0 {
                 continue; // dry at 60 rpm: very stiff, slow to advance
@@ -708,12 +704,7 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     let mut i = crate::model::Inputs::from_bearing(&b);
     i.fy = 8e3;
     i.xi = 0.003_f64.to_radians();
-    let mut qs = crate::quasi_static::QuasiStatic::new(&b, &p).unwrap();
-    let mut out = Outputs::new(b.roller_count);
-    let mut x = Vec::new();
-    qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-    let mut d = super::Dynamic::new(&b, &p).unwrap();
-    let mut st = d.initial_state(&qs, &x, &i, 0.0, 0.0);
+    let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
     d.advance(&mut st, &i, 2e-4).unwrap();
     let n = st.y.len();
     let z = b.roller_count;
