@@ -37,6 +37,16 @@ type V3 = Vector3<f64>;
 /// Speed below which dry and asperity friction are regularised (m/s).
 const V_EPS: f64 = tr::DRY_REGULARISATION_SPEED;
 
+/// Floor of the entrainment speed in the slide-to-roll ratio of the boundary law (m/s).
+///
+/// [W25]'s boundary law is a function of s = v_s / u_e; at (near) standstill u_e -> 0 and its
+/// slope d(mu)/d(v_s) = 40.4 / u_e grows without bound (4e7 s/m at u_e = 1 um/s: steps of
+/// ~1 ns, F11 in docs/robustness.md), and switching to another law below some u_e makes the
+/// traction jump. With u_e floored at 0.04 m/s the law at standstill is a regularised Coulomb
+/// law whose slope at zero sliding, 40.4 / 0.04 = 1e3 s/m, is that of the dry regularisation
+/// (0.1 / 1e-4 s/m), peaking (mu 0.15) at 0.4 mm/s sliding; above 0.04 m/s nothing changes.
+const MIN_BOUNDARY_ENTRAINMENT: f64 = 0.04;
+
 /// Constants of the contact model.
 #[derive(Debug, Clone)]
 pub(crate) struct Constants {
@@ -279,8 +289,8 @@ fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e
         return c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt();
     }
     if u_e < 1e-6 {
-        // no rolling: boundary friction, regularised
-        return 0.1 * q / (vs * vs + V_EPS * V_EPS).sqrt();
+        // no rolling, no film: the boundary law at the floored entrainment speed
+        return tr::boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs;
     }
     let w = q * c.inv_slice_len;
     let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
@@ -295,7 +305,7 @@ fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e
         let (tau, den) = full_film_stress(c, line, k, w, ln_h, v_s);
         tau / den
     } else {
-        let s = v_s / u_e;
+        let s = v_s / u_e.max(MIN_BOUNDARY_ENTRAINMENT);
         if lambda < 0.01 {
             tr::boundary_mu(s)
         } else {
