@@ -143,6 +143,9 @@ struct FlangeConst {
     reference: [f64; 2],
     normal: [f64; 2],
     sphere_radius: f64,
+    /// Least distance of the sphere centre from the rib axis (radial coordinate) used for
+    /// the rib's circumferential curvature; below it the signed in-plane coordinate is used.
+    axis_floor: f64,
     /// Sphere centre station along the axis relative to the centre of mass.
     s_sphere: f64,
     hertz: PointContact,
@@ -160,6 +163,12 @@ impl Constants {
             reference: f.point,
             normal: f.normal,
             sphere_radius: b.roller_end_radius,
+            axis_floor: {
+                // sphere centre to rib axis (along the normal) at the floored relative
+                // curvature k = MIN_RELATIVE_CURVATURE / R_s: rho_p - R_s = k R_s rho_p
+                let k = crate::geometry::MIN_RELATIVE_CURVATURE;
+                -f.normal[1] * k * b.roller_end_radius / (1.0 - k)
+            },
             s_sphere: -0.5 * g.length + b.roller_end_radius - cm,
             hertz: f.hertz,
         });
@@ -561,11 +570,29 @@ pub(crate) fn evaluate(
         if let Some(fl) = &c.flange {
             let s_centre = pos + a * fl.s_sphere;
             let sl = rot_t * (s_centre - origin);
-            let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
-            let er = if rho > 0.0 {
-                V3::new(0.0, sl[1] / rho, sl[2] / rho)
+            // The rib is a surface of revolution: the sphere centre's distance from its
+            // meridian in the centre's own half-plane, with rho its distance from the axis.
+            // That holds while the centre lies well off the axis on the roller's side. An end
+            // radius near (or above) the rib's circumferential radius rho_p = r_f / cos a_f
+            // puts the centre on or beyond the axis (32018X: R_s / rho_p = 1.0003, centre
+            // 18 um past it): rho = |r| would reflect it, adding 2 |r| cos a_f of spurious
+            // interference (9 um, 10 kN), and the term t^2 / (2 r) of a tangential offset t
+            // would be singular. There the radial coordinate is taken signed, in the roller's
+            // half-plane, and the centre's distance from the axis used for the circumferential
+            // curvature is floored at `axis_floor`, the geometry's floor on the relative
+            // curvature (the same rib as the quasi-static model's and the Hertz law's).
+            let pl = rot_t * (pos - origin);
+            let pr = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
+            let (cr, ct) = if pr > 0.0 { (pl[1] / pr, pl[2] / pr) } else { (1.0, 0.0) };
+            let r_signed = sl[1] * cr + sl[2] * ct;
+            let (rho, er) = if r_signed >= fl.axis_floor {
+                let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
+                (rho, V3::new(0.0, sl[1] / rho, sl[2] / rho))
             } else {
-                V3::new(0.0, 1.0, 0.0)
+                let t = sl[2] * cr - sl[1] * ct;
+                let hyp = (fl.axis_floor * fl.axis_floor + t * t).sqrt();
+                let (ur, ut) = (fl.axis_floor / hyp, t / hyp);
+                (r_signed + hyp - fl.axis_floor, V3::new(0.0, ur * cr - ut * ct, ur * ct + ut * cr))
             };
             let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
             // `reference` is the nominal contact point on the rib, the nominal sphere centre
