@@ -63,8 +63,9 @@ const KNOWN_1: &[(&str, &str)] = &[];
 
 /// The CI subset of the quick fidelity-1 list: the cheap groups (loads up to 0.1 C0 in every
 /// direction, speeds up to n_lim, unloaded rollers, out-of-range refusals and their messages,
-/// the light-load dynamic cases) on every preset. The dynamic model costs up to seconds per
-/// simulated ms under heavy load or at standstill (F11); the full list runs with
+/// the light-load dynamic cases) on every preset, and a run-up from rest and a sudden stop
+/// (through standstill, F11) on TRB130x230. The dynamic model costs up to seconds per
+/// simulated ms under heavy load; the full list runs with
 /// `stress --fidelity 1`.
 fn ci_subset(c: &matrix::Case) -> bool {
     let what = c.what.as_str();
@@ -73,22 +74,20 @@ fn ci_subset(c: &matrix::Case) -> bool {
             .and_then(|f| f.parse::<f64>().ok())
             .is_some_and(|f| f <= max)
     };
-    // 32018X runs at 60 rpm, where the dynamic model costs ~20 s per simulated ms (F12): only
-    // its refusals.
-    if c.id.starts_with("32018X/") {
-        return c.group == "out-of-range";
-    }
-    !what.contains("standstill")
-        && match c.group {
-            "load-axial" | "load-radial" | "load-radial-held" | "load-combined" => load(0.1),
-            "speed" => what
-                .strip_suffix("n_lim")
-                .and_then(|f| f.parse::<f64>().ok())
-                .is_some_and(|f| f.abs() <= 0.3),
-            "unloaded" | "out-of-range" => true,
-            "dynamic" => what.contains("kinematic cage") || what.contains("unloaded rollers"),
-            _ => false,
+    match c.group {
+        "load-axial" | "load-radial" | "load-radial-held" | "load-combined" => load(0.1),
+        "speed" => what
+            .strip_suffix("n_lim")
+            .and_then(|f| f.parse::<f64>().ok())
+            .is_some_and(|f| f.abs() <= 0.3),
+        "unloaded" | "out-of-range" => true,
+        "dynamic" => what.contains("kinematic cage") || what.contains("unloaded rollers"),
+        // through standstill (F11) on the cheapest preset
+        "transient" => {
+            c.id.starts_with("TRB130x230/") && (what.starts_with("run-up from rest to n_lim") || what.starts_with("sudden stop"))
         }
+        _ => false,
+    }
 }
 
 #[test]

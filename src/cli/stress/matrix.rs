@@ -259,6 +259,13 @@ impl Durations {
     }
 }
 
+/// Presets whose dynamic model costs seconds of wall time per simulated ms (CRB-TRILOBE at
+/// 40 000 rpm: 4.5 g rollers, ~9 s per ms at 0.1 C0 with a 0.02 deg deflection, Rosenbrock-W
+/// at 1e-4) and the fraction of the fidelity-1 step-size and long runs they run: the 1 s long
+/// run becomes 20 ms and the 0.1 s communication step is left out (both run on the other
+/// presets).
+pub const DYNAMIC_TIME_SCALE: &[(&str, f64)] = &[("CRB-TRILOBE", 0.02)];
+
 /// Builds the cases of one preset.
 struct Builder<'a> {
     index: usize,
@@ -318,8 +325,7 @@ impl Builder<'_> {
         c.why = Some(why);
     }
 
-    /// Constant inputs for a few steps of 1 ms (at fidelity 1 and standstill, of 1 us: see
-    /// [`Builder::standstill`]).
+    /// Constant inputs for a few steps of 1 ms.
     fn constant(
         &mut self,
         group: &'static str,
@@ -328,21 +334,22 @@ impl Builder<'_> {
         inputs: Vec<(&'static str, f64)>,
         expect: Expect,
     ) {
-        let speed = inputs.iter().find(|(n, _)| *n == "speed").map_or(self.p.speed, |(_, v)| *v);
         let inputs = inputs.into_iter().map(|(n, v)| (n, Signal::Const(v))).collect();
         let steps = self.d.short_steps;
-        let (what, h) = if self.standstill(speed) {
-            (format!("{what} (0.1 us steps: standstill, F11)"), 1e-7)
-        } else {
-            (what, 1e-3)
-        };
-        self.push(group, what, params, inputs, h, steps, expect);
+        self.push(group, what, params, inputs, 1e-3, steps, expect);
     }
 
-    /// At fidelity 1 the dynamic model crawls at (near) standstill (steps of ~1 ns, F11 in
-    /// docs/robustness.md): such cases run 0.1 us communication steps there.
-    fn standstill(&self, speed: f64) -> bool {
-        self.fidelity == 1 && speed.abs() <= 1e-3 * self.p.n_lim
+    /// The fraction of the step-size and long runs' simulated time that this preset runs at
+    /// this fidelity: 1 but for presets whose dynamic model costs seconds per simulated ms
+    /// ([`DYNAMIC_TIME_SCALE`]).
+    fn time_scale(&self) -> f64 {
+        if self.fidelity == 0 {
+            return 1.0;
+        }
+        DYNAMIC_TIME_SCALE
+            .iter()
+            .find(|(n, _)| *n == self.p.name())
+            .map_or(1.0, |(_, f)| *f)
     }
 
     /// Check the time-averaged balances of the last case (fidelity 1).
@@ -405,11 +412,6 @@ pub fn cases(fidelity: i32, quick: bool) -> Vec<Case> {
             out: Vec::new(),
         };
         preset_cases(&mut b);
-        if fidelity == 1 && p.name() == "32018X" {
-            // At its 60 rpm the dynamic model costs ~20 s per simulated ms (F12): until that
-            // is fixed only the out-of-range cases (refused before any integration) run.
-            b.out.retain(|c| c.group == "out-of-range");
-        }
         all.extend(b.out);
     }
     // The representative subset that also runs through the FMU: the first case of every
@@ -506,47 +508,40 @@ fn preset_cases(b: &mut Builder) {
         v
     };
     let base = load(b, 0.1);
-    // Through standstill the dynamic model crawls (F11): at fidelity 1 these run 6 steps of
-    // 0.1 us (a brutal run-up, but the same shape).
-    let (ts, hs, ns, note) = if b.fidelity == 1 {
-        (6e-7, 1e-7, 6, " (6 x 0.1 us: standstill, F11)")
-    } else {
-        (t, h, n, "")
-    };
     b.push(
         "transient",
-        format!("run-up from rest to n_lim{note}"),
+        "run-up from rest to n_lim".into(),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, 0.0, ts, p.n_lim))]),
-        hs,
-        ns,
+        with(base.clone(), vec![("speed", ramp(0.0, 0.0, t, p.n_lim))]),
+        h,
+        n,
         Expect::Pass,
     );
     b.push(
         "transient",
-        format!("run-up from rest to 2 n_lim{note}"),
+        "run-up from rest to 2 n_lim".into(),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, 0.0, ts, 2.0 * p.n_lim))]),
-        hs,
-        ns,
+        with(base.clone(), vec![("speed", ramp(0.0, 0.0, t, 2.0 * p.n_lim))]),
+        h,
+        n,
         Expect::PassOrRefuse,
     );
     b.push(
         "transient",
-        format!("sudden stop from n_lim{note}"),
+        "sudden stop from n_lim".into(),
         vec![],
-        with(base.clone(), vec![("speed", jump(0.5 * ts, hs, p.n_lim, 0.0))]),
-        hs,
-        ns,
+        with(base.clone(), vec![("speed", jump(0.5 * t, h, p.n_lim, 0.0))]),
+        h,
+        n,
         Expect::Pass,
     );
     b.push(
         "transient",
-        format!("reversal +n_lim to -n_lim{note}"),
+        "reversal +n_lim to -n_lim".into(),
         vec![],
-        with(base.clone(), vec![("speed", ramp(0.0, p.n_lim, ts, -p.n_lim))]),
-        hs,
-        ns,
+        with(base.clone(), vec![("speed", ramp(0.0, p.n_lim, t, -p.n_lim))]),
+        h,
+        n,
         Expect::Pass,
     );
     b.push(
@@ -698,12 +693,15 @@ fn preset_cases(b: &mut Builder) {
 
     // --- Communication steps from 1e-6 s to 0.1 s (10 steps each, moving load zone).
     for h in [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.1] {
+        if h > 0.05 && b.time_scale() < 1.0 {
+            continue;
+        }
         let mut inputs: Vec<(&'static str, Signal)> = b.combined(0.1).into_iter().map(|(n, v)| (n, Signal::Const(v))).collect();
         inputs.push(("xi", Signal::Const(deg(0.02))));
         // At fidelity 1 the long steps run 2 (0.1 s) or 3 (0.01 s) steps: minutes of wall time.
         let steps = match b.fidelity {
             1 if h >= 0.1 => 2,
-            1 if h >= 0.01 => 3,
+            1 if h >= 0.01 => ((3.0 * b.time_scale()).round() as usize).max(1),
             _ => 10,
         };
         b.push("step-size", format!("h = {h:e} s"), vec![], inputs, h, steps, Expect::Pass);
@@ -728,7 +726,7 @@ fn preset_cases(b: &mut Builder) {
 
     // --- Long runs: varying load, speed and deflection; and a constant case at 1 ms.
     {
-        let t = d.long;
+        let t = d.long * b.time_scale();
         let fr = 0.2 * p.c0;
         let n_op = p.speed;
         let inputs = vec![
@@ -1908,7 +1906,7 @@ fn fidelity_report(run: &Run, f: i32, command: &str) -> String {
     if f == 1 {
         let _ = writeln!(
             s,
-            "Every fidelity-1 case runs the Rosenbrock-W integrator (`integrator` = 2) at `tolerance` = 1e-4 unless its name says otherwise; cases at standstill run 1 µs steps (F11).\n"
+            "Every fidelity-1 case runs the Rosenbrock-W integrator (`integrator` = 2) at `tolerance` = 1e-4 unless its name says otherwise.\n"
         );
     }
     let _ = writeln!(s, "| preset | cases | passed | refused (clear message) | not available | FAILED |");
