@@ -22,36 +22,43 @@ fn threads() -> usize {
     std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
 }
 
-#[test]
-fn quick_stress_matrix_has_no_new_failures() {
-    let cases = matrix::cases(0, true);
-    assert!(cases.len() >= 200, "only {} cases", cases.len());
-    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress");
+/// Run `cases` in the scratch folder `scratch`, print the counts under `label`, name known
+/// failures that no longer occur, and fail on any failure that is not in `known`.
+fn run_without_new_failures(label: &str, cases: Vec<matrix::Case>, scratch: &str, known: &[(&str, &str)]) -> matrix::Run {
+    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(scratch);
     let started = std::time::Instant::now();
     let run = matrix::Run::execute(cases, threads(), &scratch);
     let failures = run.failures();
     eprintln!(
-        "{} cases in {:.1} s: {} passed, {} refused with a clear message, {} FAILED ({} known); FMU subset {} cases",
+        "{label}{} cases in {:.1} s: {} passed, {} refused with a clear message, {} FAILED ({} known); FMU subset {} cases",
         run.cases.len(),
         started.elapsed().as_secs_f64(),
         run.count("passed"),
         run.count("refused"),
         failures.len(),
-        KNOWN.len(),
+        known.len(),
         run.fmu.len()
     );
-    let is_known = |f: &str| KNOWN.iter().any(|(id, why)| f.starts_with(&format!("{id}: ")) && f.contains(why));
+    let is_known = |f: &str| known.iter().any(|(id, why)| f.starts_with(&format!("{id}: ")) && f.contains(why));
     let new: Vec<&String> = failures.iter().filter(|f| !is_known(f)).collect();
-    for (id, _) in KNOWN {
+    for (id, _) in known {
         if !failures.iter().any(|f| f.starts_with(&format!("{id}: "))) {
-            eprintln!("known failure no longer occurs (remove it from KNOWN): {id}");
+            eprintln!("known failure no longer occurs (remove it from the known list): {id}");
         }
     }
     assert!(
         new.is_empty(),
-        "new stress failures:\n{}",
+        "new {label}stress failures:\n{}",
         new.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n")
     );
+    run
+}
+
+#[test]
+fn quick_stress_matrix_has_no_new_failures() {
+    let cases = matrix::cases(0, true);
+    assert!(cases.len() >= 200, "only {} cases", cases.len());
+    let run = run_without_new_failures("", cases, "stress", KNOWN);
     // Nothing non-finite, ever: a refusal leaves finite outputs (checked per case), and
     // every passing case checked every output after every step.
     assert!(run.count("passed") > run.cases.len() / 2);
@@ -98,27 +105,7 @@ fn fidelity_1_quick_subset_has_no_new_failures() {
         .iter()
         .all(|c| c.params.first() == Some(&("fidelity", matrix::Value::Integer(1)))));
     let cases: Vec<matrix::Case> = f1.into_iter().filter(ci_subset).collect();
-    let scratch = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress-1");
-    let started = std::time::Instant::now();
-    let run = matrix::Run::execute(cases, threads(), &scratch);
-    let failures = run.failures();
-    eprintln!(
-        "fidelity 1: {} cases in {:.1} s: {} passed, {} refused with a clear message, {} FAILED ({} known); FMU subset {} cases",
-        run.cases.len(),
-        started.elapsed().as_secs_f64(),
-        run.count("passed"),
-        run.count("refused"),
-        failures.len(),
-        KNOWN_1.len(),
-        run.fmu.len()
-    );
-    let is_known = |f: &str| KNOWN_1.iter().any(|(id, why)| f.starts_with(&format!("{id}: ")) && f.contains(why));
-    let new: Vec<&String> = failures.iter().filter(|f| !is_known(f)).collect();
-    assert!(
-        new.is_empty(),
-        "new fidelity-1 stress failures:\n{}",
-        new.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("\n")
-    );
+    let run = run_without_new_failures("fidelity 1: ", cases, "stress-1", KNOWN_1);
     assert_eq!(run.count("not available"), 0);
     assert!(run.cases.len() >= 40 && run.count("passed") > run.cases.len() / 3);
     assert!(
