@@ -5,7 +5,8 @@
 //! - [`bearing`]: bearing descriptions (presets, JSON files) and their validation
 //! - [`geometry`]: derived geometry, slices, contact points, mass properties
 //! - [`contact`]: contact laws (Johnson, Palmgren, Hertz point contact)
-//! - [`tribology`]: film thickness, traction, rolling resistance
+//! - [`tribology`]: film thickness, traction, rolling resistance; [`journal_film`]: the
+//!   cage land's short-bearing oil film
 //! - [`quasi_static`]: fidelity 0, the quasi-static equilibrium and friction torque
 //! - [`dynamic`]: fidelity 1, roller/cage/cone dynamics with an adaptive integrator
 //! - [`model`], [`simulation`]: parameters/inputs/outputs and the steppable element
@@ -18,6 +19,7 @@ pub mod dynamic;
 pub mod fastmath;
 pub mod fmi;
 pub mod geometry;
+pub mod journal_film;
 pub mod model;
 pub mod model_description;
 pub mod quasi_static;

@@ -257,6 +257,7 @@ impl Dynamic {
 
     /// Integrate from `state.t` to `t_end` with `inputs` held.
     pub fn advance(&mut self, state: &mut DynamicState, inputs: &Inputs, t_end: f64) -> Result<(), ModelError> {
+        self.check_film_heating(inputs)?;
         if state.fsal_inputs.as_ref() != Some(inputs) {
             // the right-hand side changed: the stored derivative no longer applies
             state.fsal.clear();
@@ -392,6 +393,32 @@ impl Dynamic {
     }
 
     /// Cage angle now (roller 1's pocket).
+    /// The validity range of the isothermal oil films (cage pockets and land, EHL traction):
+    /// the Couette (Brinkman) temperature rise eta0 u^2 / (8 k) of a film sheared at the
+    /// cone's surface speed u, the fastest surface in the bearing, must stay below
+    /// `MAX_FILM_HEATING`. Beyond it the viscous drag of a cold film brakes cage and rollers
+    /// with megawatts that no real oil would carry (F16: 100 Pa s at 40 000 rpm) and thermal
+    /// effects, not modelled, decide the result.
+    pub fn check_film_heating(&self, inputs: &Inputs) -> Result<(), ModelError> {
+        let u = inputs.speed.abs() * self.g.pitch_contact_radii().0;
+        let rise = self.p.eta0 * u * u / (8.0 * OIL_CONDUCTIVITY);
+        if rise > MAX_FILM_HEATING {
+            return Err(ModelError::InvalidInput {
+                name: "speed",
+                message: format!(
+                    "{:.6e} rad/s with oil.eta0 = {} Pa s is outside the dynamic model's range: its isothermal oil films would heat by eta0 u^2 / (8 k) = {rise:.3e} K at the cone's surface speed u = {u:.3} m/s (k = {OIL_CONDUCTIVITY} W/(m K), limit {MAX_FILM_HEATING} K; thermal effects are not modelled); lower the speed or the viscosity",
+                    inputs.speed, self.p.eta0
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Kinetic energy of rollers, cage and cone translation in `state` (J).
+    pub fn kinetic_energy(&self, state: &DynamicState) -> f64 {
+        contacts::kinetic_energy(&self.g, &self.c, &state.y)
+    }
+
     pub fn cage_angle(&self, state: &DynamicState) -> f64 {
         contacts::cage_angle(&self.g, &self.p, &state.y)
     }
@@ -408,6 +435,12 @@ impl Dynamic {
 /// The dynamic integrators' tolerance floor: below it the error estimates are round-off of
 /// the state (positions of ~1e-5 m carried to 16 digits), and steps shrink without end.
 pub const MIN_TOLERANCE: f64 = 1e-10;
+
+/// Thermal conductivity of a bearing oil, W/(m K) (mineral and ester oils 0.12..0.15).
+pub const OIL_CONDUCTIVITY: f64 = 0.13;
+
+/// Largest Couette temperature rise of the isothermal oil films the dynamic model accepts, K.
+pub const MAX_FILM_HEATING: f64 = 1000.0;
 
 fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
     let tol = p.tolerance.max(MIN_TOLERANCE);
