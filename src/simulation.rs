@@ -187,6 +187,15 @@ impl Simulation {
         Ok(&self.state.outputs)
     }
 
+    /// Kinetic energy stored in the moving bodies (J): the dynamic model's rollers, cage and
+    /// cone translation; 0 for the quasi-static model and before initialisation.
+    pub fn kinetic_energy(&self) -> f64 {
+        match (&self.model, &self.state.dynamic) {
+            (Some(Model::Dynamic { dynamic, .. }), Some(st)) => dynamic.kinetic_energy(st),
+            _ => 0.0,
+        }
+    }
+
     /// The outputs of the last successful solve, without solving.
     pub fn last_outputs(&self) -> &Outputs {
         &self.state.outputs

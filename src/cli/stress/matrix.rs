@@ -211,9 +211,10 @@ pub struct Case {
     /// Also run through the FMU's C ABI (and compare bitwise with `Simulation`).
     pub fmu: bool,
     /// Time-averaged balances over the second half of the run (the inputs must be constant
-    /// there), to this relative tolerance: mean `powerLoss` = mean `frictionTorque × speed`
-    /// (what drives the cone is dissipated: the stored kinetic and elastic energy is
-    /// bounded) and, in force preload of a tapered bearing, mean `reaction.Fx` = `Fx`.
+    /// there), to this relative tolerance: mean `frictionTorque × speed` = mean `powerLoss` +
+    /// the change of the stored kinetic energy over the half divided by its duration (what
+    /// drives the cone is dissipated or stored; the elastic energy is bounded and small) and,
+    /// in force preload of a tapered bearing, mean `reaction.Fx` = `Fx`.
     pub average: Option<f64>,
 }
 
@@ -923,7 +924,13 @@ fn preset_cases(b: &mut Builder) {
     for (what, params, expect) in params {
         let mut inputs = b.combined(0.1);
         inputs.push(("xi", deg(0.01)));
+        let thick_oil = what.starts_with("oil.eta0 = 100");
         b.constant("parameters", what, params, inputs, expect);
+        if thick_oil && b.fidelity == 1 {
+            // F16: the dynamic model's isothermal films would heat by thousands of kelvin
+            // at the cone's surface speed of the fast presets
+            b.last_expect(Expect::PassOrRefuse, "isothermal oil films");
+        }
     }
 
     // --- Outside the model's range: must be refused, saying why.
@@ -994,16 +1001,17 @@ fn dynamic_cases(b: &mut Builder) {
         v.push(("speed", speed));
         v
     };
-    // The averaged balances need 40 steps (20 averaged); the quick list runs them short
-    // (unchecked).
+    // The averaged balances run 40 ms in 0.2 ms steps (the second half averaged: the
+    // outputs are instantaneous values, and pocket impacts make powerLoss spiky, so 1 ms
+    // samples leave ~3 % of sampling noise); the quick list runs them short (unchecked).
     let energy = 0.03;
-    let n_avg = if b.d.long >= 1.0 { 40 } else { n };
+    let (h_avg, n_avg) = if b.d.long >= 1.0 { (h / 5.0, 200) } else { (h, n) };
     b.push(
         "dynamic",
         "energy balance, 0.1 C0 combined, constant".into(),
         vec![],
         consts(b.combined(0.1)),
-        h,
+        h_avg,
         n_avg,
         Expect::Pass,
     );
@@ -1017,7 +1025,7 @@ fn dynamic_cases(b: &mut Builder) {
             v.push(("xi", 0.05f64.to_radians()));
             v
         }),
-        h,
+        h_avg,
         n_avg,
         Expect::Pass,
     );
@@ -1114,14 +1122,13 @@ fn dynamic_cases(b: &mut Builder) {
             "pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)".into(),
             vec![("preload", Value::Integer(1))],
             consts(v),
-            h,
+            h_avg,
             n_avg,
             Expect::Pass,
         );
-        // No averaged energy balance here (F13): the rollers leaving and entering the load
-        // zone make the cage speed swing by ~0.8 % between 40 ms windows; the kinetic energy
-        // that moves in and out (~10 J) is ±250 W over such a window, more than 3 % of the
-        // ~1.3 kW dissipated. Over 40..200 ms the balance closes to ~2 %.
+        // (F13: the rollers leaving and entering the load zone make the cage speed swing by
+        // ~0.8 %; the kinetic energy that moves in and out, ~10 J, is in the balance.)
+        b.last_average(energy);
         let mut v = radial(0.0);
         v.push(("axialDisplacement", -0.005 * p.bearing.roller_mean_diameter));
         b.push(
@@ -1139,7 +1146,7 @@ fn dynamic_cases(b: &mut Builder) {
             "pure radial 0.05 C0 (unloaded rollers)".into(),
             vec![],
             consts(radial(0.05)),
-            h,
+            h_avg,
             n_avg,
             Expect::Pass,
         );
@@ -1206,6 +1213,9 @@ pub trait Element {
     /// Read Real and Integer variables; `Err` with the values still written when the
     /// element refuses.
     fn read(&mut self, reals: &[u32], ints: &[u32], rv: &mut [f64], iv: &mut [i32]) -> Result<(), Refusal>;
+    /// Kinetic energy stored in the element (J), where the element can tell (not through
+    /// the FMU's variables).
+    fn kinetic_energy(&self) -> Option<f64>;
 }
 
 impl Element for Simulation {
@@ -1242,6 +1252,10 @@ impl Element for Simulation {
             *v = self.last_integer(*vr).unwrap_or(i32::MIN);
         }
         result
+    }
+
+    fn kinetic_energy(&self) -> Option<f64> {
+        Some(Simulation::kinetic_energy(self))
     }
 }
 
@@ -1402,6 +1416,10 @@ impl Element for Fmu {
         let s1 = unsafe { fmi2GetReal(self.c, reals.as_ptr(), reals.len(), rv.as_mut_ptr()) };
         let s2 = unsafe { fmi2GetInteger(self.c, ints.as_ptr(), ints.len(), iv.as_mut_ptr()) };
         self.status(s1.max(s2))
+    }
+
+    fn kinetic_energy(&self) -> Option<f64> {
+        None
     }
 }
 
@@ -1606,7 +1624,7 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
         return refused(el, t0, r, &mut rv, &mut iv);
     }
     // (frictionTorque x speed, powerLoss, reaction.Fx, Fx) after every step
-    let mut samples: Vec<(f64, f64, f64, Option<f64>)> = Vec::new();
+    let mut samples: Vec<Sample> = Vec::new();
     // Step k: inputs at u(t_k), doStep(t_k, h), outputs at t_{k+1} (an FMI master's loop).
     for k in 0..=case.steps {
         let t = t0 + k as f64 * case.h;
@@ -1632,7 +1650,13 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
             };
         }
         if k > 0 {
-            samples.push((speed_of(tu).unwrap_or(f64::NAN) * rv[i_torque], rv[i_power], rv[i_rfx], fx_of(tu)));
+            samples.push(Sample {
+                input: speed_of(tu).unwrap_or(f64::NAN) * rv[i_torque],
+                loss: rv[i_power],
+                reaction_fx: rv[i_rfx],
+                fx: fx_of(tu),
+                kinetic: el.kinetic_energy(),
+            });
         }
         rec.qo_max = rec.qo_max.max(rv[i_qo]);
         rec.residual_max = rec.residual_max.max(rv[i_res]);
@@ -1656,22 +1680,31 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
             reason: "accepted a case outside the model's range without complaint".into(),
         };
     }
-    // (at least 20 steps in the second half, else the start transient dominates: not checked)
-    if let Some(tol) = case.average.filter(|_| samples.len() >= 40) {
-        let tail = &samples[samples.len() / 2..];
+    // (at least 20 steps in the second half, else the start transient dominates: not checked;
+    // an element that cannot tell its kinetic energy, the FMU, is compared bitwise instead)
+    let first = samples.len() / 2;
+    let kinetic = |i: usize| samples.get(i).and_then(|s| s.kinetic);
+    if let (Some(tol), Some(ke_start), Some(ke_end)) = (
+        case.average.filter(|_| samples.len() >= 40),
+        kinetic(first.wrapping_sub(1)),
+        kinetic(samples.len().wrapping_sub(1)),
+    ) {
+        let tail = &samples[first..];
         let n = tail.len() as f64;
-        let mean = |f: &dyn Fn(&(f64, f64, f64, Option<f64>)) -> f64| tail.iter().map(f).sum::<f64>() / n;
-        let (input, loss) = (mean(&|s| s.0), mean(&|s| s.1));
-        if !((input - loss).abs() <= tol * loss.abs().max(input.abs()) + 1e-9) {
+        let mean = |f: &dyn Fn(&Sample) -> f64| tail.iter().map(f).sum::<f64>() / n;
+        let (input, loss) = (mean(&|s| s.input), mean(&|s| s.loss));
+        // what drives the cone is dissipated or stored: input = loss + d(kinetic)/dt
+        let stored = (ke_end - ke_start) / (n * case.h);
+        if !((input - loss - stored).abs() <= tol * loss.abs().max(input.abs()) + 1e-9) {
             return Outcome::Failed {
                 reason: format!(
-                    "energy balance on average over the last {n} steps: frictionTorque x speed {input:.6e} W, powerLoss {loss:.6e} W (tolerance {tol})"
+                    "energy balance on average over the last {n} steps: frictionTorque x speed {input:.6e} W, powerLoss {loss:.6e} W, kinetic energy change {stored:.6e} W (tolerance {tol})"
                 ),
             };
         }
         if tapered && force_preload {
-            if let Some(fx) = tail[0].3 {
-                let rfx = mean(&|s| s.2);
+            if let Some(fx) = tail[0].fx {
+                let rfx = mean(&|s| s.reaction_fx);
                 if !((rfx - fx).abs() <= tol * fx.abs().max(1.0)) {
                     return Outcome::Failed {
                         reason: format!("mean reaction.Fx {rfx:.6e} N over the last {n} steps but Fx = {fx:.6e} N (tolerance {tol})"),
@@ -1681,6 +1714,19 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
         }
     }
     Outcome::Passed
+}
+
+/// The outputs of one communication point that the averaged balances use.
+struct Sample {
+    /// frictionTorque x speed (W).
+    input: f64,
+    /// powerLoss (W).
+    loss: f64,
+    reaction_fx: f64,
+    /// The input Fx the outputs belong to (force preload of a tapered bearing).
+    fx: Option<f64>,
+    /// Kinetic energy at the communication point (J), where the element tells it.
+    kinetic: Option<f64>,
 }
 
 #[allow(clippy::too_many_arguments)]
