@@ -288,27 +288,61 @@ pub(crate) fn cage_speed(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
     (0..g.z).map(|j| y[ROLLERS + PER_ROLLER * j + 5]).sum::<f64>() / g.z as f64
 }
 
+/// Position, velocity and attitude of roller `j` in state `y`: azimuth frame e_r, e_t (x the
+/// bearing axis), orbit radius r, centre of mass position and velocity, the roller's axis a
+/// (tilted in the axial plane to u, skewed about m_in), its angular velocity w, and
+/// sin/cos of the skew.
+struct RollerPose {
+    e_r: V3,
+    e_t: V3,
+    r: f64,
+    pos: V3,
+    vel: V3,
+    u: V3,
+    m_in: V3,
+    a: V3,
+    w: V3,
+    sf: f64,
+    cf: f64,
+}
+
+#[inline(always)]
+fn roller_pose(g: &Geometry, c: &Constants, y: &[f64], j: usize) -> RollerPose {
+    let o = ROLLERS + PER_ROLLER * j;
+    let (x, dr, psi) = (y[o], y[o + 1], y[o + 2]);
+    let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
+    let (tilt, skew) = (y[o + 6], y[o + 7]);
+    let (sp, cp) = psi.sin_cos();
+    let e_r = V3::new(0.0, cp, sp);
+    let e_t = V3::new(0.0, -sp, cp);
+    let r = c.pitch_radius + dr;
+    let (sb, cb) = (g.axis_angle - tilt).sin_cos();
+    let u = V3::x() * cb - e_r * sb;
+    let (sf, cf) = skew.sin_cos();
+    RollerPose {
+        e_r,
+        e_t,
+        r,
+        pos: V3::x() * x + e_r * r,
+        vel: V3::x() * xd + e_r * drd + e_t * (r * psid),
+        u,
+        m_in: V3::x() * sb + e_r * cb,
+        a: u * cf - e_t * sf,
+        w: V3::x() * y[o + 8] + e_r * y[o + 9] + e_t * y[o + 10],
+        sf,
+        cf,
+    }
+}
+
 /// Kinetic energy of the moving bodies in state `y` (J): rollers (translation, and rotation
 /// about their axis and transverse to it), cage (translation and spin), cone translation.
 /// The cone's spin is driven by the shaft and not counted.
 pub(crate) fn kinetic_energy(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
     let mut e = 0.0;
     for j in 0..g.z {
-        let o = ROLLERS + PER_ROLLER * j;
-        let (dr, psi) = (y[o + 1], y[o + 2]);
-        let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
-        let (tilt, skew) = (y[o + 6], y[o + 7]);
-        let (sp, cp) = psi.sin_cos();
-        let e_r = V3::new(0.0, cp, sp);
-        let e_t = V3::new(0.0, -sp, cp);
-        let v2 = xd * xd + drd * drd + ((c.pitch_radius + dr) * psid).powi(2);
-        let (sb, cb) = (g.axis_angle - tilt).sin_cos();
-        let u = V3::x() * cb - e_r * sb;
-        let (sf, cf) = skew.sin_cos();
-        let a = u * cf - e_t * sf;
-        let w = V3::x() * y[o + 8] + e_r * y[o + 9] + e_t * y[o + 10];
+        let RollerPose { vel, a, w, .. } = roller_pose(g, c, y, j);
         let wa = w.dot(&a);
-        e += 0.5 * (c.m_r * v2 + c.i_a * wa * wa + c.i_t * (w.norm_squared() - wa * wa));
+        e += 0.5 * (c.m_r * vel.norm_squared() + c.i_a * wa * wa + c.i_t * (w.norm_squared() - wa * wa));
     }
     if c.cage_dynamic {
         e += 0.5 * (c.m_cage * (y[CAGE + 3].powi(2) + y[CAGE + 4].powi(2)) + c.j_cage * y[CAGE + 5].powi(2));
@@ -568,24 +602,22 @@ pub(crate) fn evaluate(
 
     for j in 0..z {
         let o = ROLLERS + PER_ROLLER * j;
-        let (x, dr, psi) = (y[o], y[o + 1], y[o + 2]);
+        let RollerPose {
+            e_r,
+            e_t,
+            r,
+            pos,
+            vel,
+            u,
+            m_in,
+            a,
+            w,
+            sf,
+            cf,
+        } = roller_pose(g, c, y, j);
         let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
-        let (tilt, skew) = (y[o + 6], y[o + 7]);
-        let (sp, cp) = psi.sin_cos();
-        let e_r = V3::new(0.0, cp, sp);
-        let e_t = V3::new(0.0, -sp, cp);
-        let r = c.pitch_radius + dr;
-        let pos = V3::x() * x + e_r * r;
-        let vel = V3::x() * xd + e_r * drd + e_t * (r * psid);
-        let beta = g.axis_angle - tilt;
-        let (sb, cb) = beta.sin_cos();
-        let u = V3::x() * cb - e_r * sb;
-        let m_in = V3::x() * sb + e_r * cb;
-        let (sf, cf) = skew.sin_cos();
-        let a = u * cf - e_t * sf;
         let da_dtilt = m_in * cf;
         let da_dskew = -u * sf - e_t * cf;
-        let w = V3::x() * y[o + 8] + e_r * y[o + 9] + e_t * y[o + 10];
         let dd = c.dd_half[j];
 
         // cup: fixed, the global frame
