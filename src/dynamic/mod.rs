@@ -392,7 +392,6 @@ impl Dynamic {
         out.summarize();
     }
 
-    /// Cage angle now (roller 1's pocket).
     /// The validity range of the isothermal oil films (cage pockets and land, EHL traction):
     /// the Couette (Brinkman) temperature rise eta0 u^2 / (8 k) of a film sheared at the
     /// cone's surface speed u, the fastest surface in the bearing, must stay below
@@ -419,6 +418,7 @@ impl Dynamic {
         contacts::kinetic_energy(&self.g, &self.c, &state.y)
     }
 
+    /// Cage angle now (roller 1's pocket).
     pub fn cage_angle(&self, state: &DynamicState) -> f64 {
         contacts::cage_angle(&self.g, &self.p, &state.y)
     }

@@ -261,10 +261,10 @@ impl Durations {
 }
 
 /// Presets whose dynamic model costs seconds of wall time per simulated ms (CRB-TRILOBE at
-/// 40 000 rpm: 4.5 g rollers, 1.5-4 s per ms at 0.1 C0 with a 0.02 deg deflection, Rosenbrock-W
-/// at 1e-4, with the cage whirling on its land) and the fraction of the fidelity-1 step-size and long runs they run: the 1 s long
-/// run becomes 20 ms and the 0.1 s communication step is left out (both run on the other
-/// presets).
+/// 40 000 rpm: 4.5 g rollers, 1.5-4 s per ms at 0.1 C0 with a 0.02 deg deflection,
+/// Rosenbrock-W at 1e-4, the cage whirling on its land) and the fraction of the fidelity-1
+/// step-size and long runs they run: the 1 s long run becomes 20 ms and the 0.1 s
+/// communication step is left out (both run on the other presets).
 pub const DYNAMIC_TIME_SCALE: &[(&str, f64)] = &[("CRB-TRILOBE", 0.02)];
 
 /// Builds the cases of one preset.
