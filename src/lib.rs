@@ -24,5 +24,6 @@ pub mod model;
 pub mod model_description;
 pub mod quasi_static;
 pub mod simulation;
+pub mod skf_friction;
 pub mod tribology;
 pub mod variables;
