@@ -183,6 +183,60 @@ pub struct LubricantFile {
     #[serde(rename = "alpha_per_Pa")]
     pub alpha_per_pa: f64,
     pub roughness_um: f64,
+    /// Traction data of the oil (docs/model.md, "Oil traction data"); defaults when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traction: Option<OilTractionFile>,
+}
+
+/// The oil's traction data in a bearing file: every field optional, with the documented
+/// defaults of [`OilTraction::default`].
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OilTractionFile {
+    #[serde(rename = "eyring_stress_MPa", default, skip_serializing_if = "Option::is_none")]
+    pub eyring_stress_mpa: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limiting_shear: Option<f64>,
+    #[serde(rename = "shear_modulus_GPa", default, skip_serializing_if = "Option::is_none")]
+    pub shear_modulus_gpa: Option<f64>,
+    #[serde(rename = "beta_per_K", default, skip_serializing_if = "Option::is_none")]
+    pub beta_per_k: Option<f64>,
+    #[serde(rename = "conductivity_W_mK", default, skip_serializing_if = "Option::is_none")]
+    pub conductivity_w_mk: Option<f64>,
+    /// "barus" or "roelands".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub piezoviscosity: Option<crate::tribology::Piezoviscosity>,
+}
+
+/// The oil's traction data (SI) with the defaults the presets use unless they say otherwise
+/// (sources in docs/model.md, "Oil traction data").
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OilTraction {
+    /// Eyring stress tau_0 (Pa): 5 MPa, mid-range of Johnson & Tevaarwerk (1977), 2-10 MPa.
+    pub eyring_stress: f64,
+    /// Limiting shear stress over pressure: 0.08 (Bair & Winer 1979 range 0.03-0.1).
+    pub limiting_shear: f64,
+    /// Shear modulus of the film (Pa): 1 GPa (Johnson & Tevaarwerk 1977: 0.3-3 GPa).
+    pub shear_modulus: f64,
+    /// Temperature-viscosity coefficient (1/K): 0.03, ln(nu40/nu100)/60 K of a MIL-PRF-23699
+    /// aviation oil (25 and 5 mm^2/s).
+    pub beta: f64,
+    /// Thermal conductivity of the oil (W/(m K)): 0.13, mineral and ester oils.
+    pub conductivity: f64,
+    pub piezoviscosity: crate::tribology::Piezoviscosity,
+}
+
+impl Default for OilTraction {
+    fn default() -> OilTraction {
+        OilTraction {
+            eyring_stress: 5e6,
+            limiting_shear: 0.08,
+            shear_modulus: 1e9,
+            beta: 0.03,
+            conductivity: 0.13,
+            piezoviscosity: crate::tribology::Piezoviscosity::Barus,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -199,6 +253,9 @@ pub struct FrictionFile {
     pub mu: f64,
     pub flange_mu0: f64,
     pub cage_slip_rate: f64,
+    /// Composite RMS roughness of roller end and rib (um); the raceway roughness when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flange_roughness_um: Option<f64>,
 }
 
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -291,6 +348,9 @@ pub struct Bearing {
     pub eta0: f64,
     pub alpha: f64,
     pub roughness: f64,
+    pub oil_traction: OilTraction,
+    /// Composite roughness of roller end and rib (m).
+    pub flange_roughness: f64,
     pub lubrication: LubricationModel,
     pub mu: f64,
     pub flange_mu0: f64,
@@ -658,10 +718,60 @@ impl BearingFile {
         let eta0 = in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0)?;
         let alpha = in_range("lubricant.alpha_per_Pa", l.alpha_per_pa, 0.0, 1e-7)?;
         let roughness = in_range("lubricant.roughness_um", l.roughness_um, 0.0, 100.0)? * UM;
+        let oil_traction = {
+            let d = OilTraction::default();
+            let t = l.traction.clone().unwrap_or_default();
+            let or = |field: &str, v: Option<f64>, lo: f64, hi: f64, scale: f64, default: f64| -> Result<f64, BearingError> {
+                match v {
+                    Some(v) => Ok(in_range(field, v, lo, hi)? * scale),
+                    None => Ok(default),
+                }
+            };
+            OilTraction {
+                eyring_stress: or(
+                    "lubricant.traction.eyring_stress_MPa",
+                    t.eyring_stress_mpa,
+                    0.01,
+                    100.0,
+                    1e6,
+                    d.eyring_stress,
+                )?,
+                limiting_shear: or(
+                    "lubricant.traction.limiting_shear",
+                    t.limiting_shear,
+                    0.001,
+                    0.3,
+                    1.0,
+                    d.limiting_shear,
+                )?,
+                shear_modulus: or(
+                    "lubricant.traction.shear_modulus_GPa",
+                    t.shear_modulus_gpa,
+                    0.0,
+                    100.0,
+                    1e9,
+                    d.shear_modulus,
+                )?,
+                beta: or("lubricant.traction.beta_per_K", t.beta_per_k, 0.0, 0.2, 1.0, d.beta)?,
+                conductivity: or(
+                    "lubricant.traction.conductivity_W_mK",
+                    t.conductivity_w_mk,
+                    0.01,
+                    10.0,
+                    1.0,
+                    d.conductivity,
+                )?,
+                piezoviscosity: t.piezoviscosity.unwrap_or(d.piezoviscosity),
+            }
+        };
         let f = &self.friction;
         let mu = in_range("friction.mu", f.mu, 0.0, 2.0)?;
         let flange_mu0 = in_range("friction.flange_mu0", f.flange_mu0, 0.0, 2.0)?;
         let slip = in_range("friction.cage_slip_rate", f.cage_slip_rate, 0.0, 1.0)?;
+        let flange_roughness = match f.flange_roughness_um {
+            Some(v) => in_range("friction.flange_roughness_um", v, 0.0, 100.0)? * UM,
+            None => roughness,
+        };
         let rw = &self.raceway;
         let clearance = finite("raceway.clearance_um", rw.clearance_um)? * UM;
         if clearance.abs() > 0.05 * mean_d {
@@ -725,6 +835,8 @@ impl BearingFile {
             eta0,
             alpha,
             roughness,
+            oil_traction,
+            flange_roughness,
             lubrication: f.model,
             mu,
             flange_mu0,

@@ -2,6 +2,7 @@
 //! report. Shared by every fidelity level; knows nothing of FMI.
 
 use crate::bearing::{Bearing, LubricationModel};
+use crate::tribology::{Piezoviscosity, TractionLaw};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -53,6 +54,19 @@ pub struct Parameters {
     pub flange_mu0: f64,
     pub gyroscopic: bool,
     pub centrifugal: bool,
+    /// Full-film traction law (and with it the film and rib laws it belongs to).
+    pub traction: TractionLaw,
+    /// Viscosity against pressure in the traction law.
+    pub piezoviscosity: Piezoviscosity,
+    /// The oil's traction data: Eyring stress (Pa), limiting shear over pressure, film shear
+    /// modulus (Pa), temperature-viscosity coefficient (1/K), thermal conductivity (W/(m K)).
+    pub eyring_stress: f64,
+    pub limiting_shear: f64,
+    pub shear_modulus: f64,
+    pub oil_beta: f64,
+    pub oil_conductivity: f64,
+    /// Composite roughness of roller end and rib (m).
+    pub flange_roughness: f64,
     /// Diameter deviation of each roller (m), one per roller.
     pub roller_dd: Vec<f64>,
     /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4), 1 = Gill + Milne-Hamming
@@ -72,6 +86,30 @@ pub struct Parameters {
 }
 
 impl Parameters {
+    /// The oil's traction data as the traction laws take them.
+    pub fn rheology(&self) -> crate::tribology::Rheology {
+        crate::tribology::Rheology {
+            eyring_stress: self.eyring_stress,
+            limiting_shear: self.limiting_shear,
+            shear_modulus: self.shear_modulus,
+            beta: self.oil_beta,
+            conductivity: self.oil_conductivity,
+            eta0: self.eta0,
+        }
+    }
+
+    /// The lubricated contact laws' data for a bearing of reduced modulus `e_prime`.
+    pub fn lubricant(&self, e_prime: f64) -> crate::tribology::Lubricant {
+        crate::tribology::Lubricant {
+            rheology: self.rheology(),
+            viscosity: crate::tribology::ViscosityTable::for_oil(self.eta0, self.alpha, self.piezoviscosity),
+            inlet_heating: self.oil_beta * self.eta0 / self.oil_conductivity,
+            sigma: self.roughness,
+            rib_sigma: self.flange_roughness,
+            e_prime,
+        }
+    }
+
     /// The defaults a bearing description carries.
     pub fn from_bearing(b: &Bearing) -> Parameters {
         Parameters {
@@ -102,6 +140,14 @@ impl Parameters {
             flange_mu0: b.flange_mu0,
             gyroscopic: true,
             centrifugal: true,
+            traction: TractionLaw::ThermalEyring,
+            piezoviscosity: b.oil_traction.piezoviscosity,
+            eyring_stress: b.oil_traction.eyring_stress,
+            limiting_shear: b.oil_traction.limiting_shear,
+            shear_modulus: b.oil_traction.shear_modulus,
+            oil_beta: b.oil_traction.beta,
+            oil_conductivity: b.oil_traction.conductivity,
+            flange_roughness: b.flange_roughness,
             roller_dd: vec![0.0; b.roller_count],
             integrator: 0,
             cage_dynamic: true,
@@ -183,6 +229,18 @@ impl Parameters {
                 "roller.crownDrop",
                 format!("must be in [0, {:.3e}] m, got {}", 0.05 * d, self.crown_drop),
             );
+        }
+        for (name, v, lo, hi, unit) in [
+            ("oil.eyringStress", self.eyring_stress, 1e4, 1e8, " Pa"),
+            ("oil.limitingShear", self.limiting_shear, 1e-3, 0.3, ""),
+            ("oil.shearModulus", self.shear_modulus, 0.0, 1e11, " Pa"),
+            ("oil.beta", self.oil_beta, 0.0, 0.2, " 1/K"),
+            ("oil.conductivity", self.oil_conductivity, 0.01, 10.0, " W/(m K)"),
+            ("flange.roughness", self.flange_roughness, 0.0, 1e-4, " m"),
+        ] {
+            if !(v.is_finite() && v >= lo && v <= hi) {
+                return bad(name, format!("must be in [{lo:e}, {hi:e}]{unit}, got {v}"));
+            }
         }
         if !(self.flange_mu0.is_finite() && (0.0..=2.0).contains(&self.flange_mu0)) {
             return bad("flange.mu0", format!("must be in [0, 2], got {}", self.flange_mu0));

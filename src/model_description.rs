@@ -32,19 +32,22 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logSolver", "Newton iterations and residual of every solve (debug)"),
 ];
 
-/// Units with their SI base-unit exponents (kg, m, s, rad) and display units (name, factor).
-const UNITS: &[(&str, [i32; 4], &[(&str, f64)])] = &[
-    ("1", [0, 0, 0, 0], &[]),
-    ("m", [0, 1, 0, 0], &[]),
-    ("kg", [1, 0, 0, 0], &[]),
-    ("s", [0, 0, 1, 0], &[]),
-    ("N", [1, 1, -2, 0], &[]),
-    ("N.m", [1, 2, -2, 0], &[]),
-    ("W", [1, 2, -3, 0], &[]),
-    ("rad", [0, 0, 0, 1], &[("deg", 57.295_779_513_082_32)]),
-    ("rad/s", [0, 0, -1, 1], &[("rpm", 9.549_296_585_513_72)]),
-    ("Pa.s", [1, -1, -1, 0], &[]),
-    ("1/Pa", [-1, 1, 2, 0], &[]),
+/// Units with their SI base-unit exponents (kg, m, s, rad, K) and display units (name, factor).
+const UNITS: &[(&str, [i32; 5], &[(&str, f64)])] = &[
+    ("1", [0, 0, 0, 0, 0], &[]),
+    ("m", [0, 1, 0, 0, 0], &[]),
+    ("kg", [1, 0, 0, 0, 0], &[]),
+    ("s", [0, 0, 1, 0, 0], &[]),
+    ("N", [1, 1, -2, 0, 0], &[]),
+    ("N.m", [1, 2, -2, 0, 0], &[]),
+    ("W", [1, 2, -3, 0, 0], &[]),
+    ("rad", [0, 0, 0, 1, 0], &[("deg", 57.295_779_513_082_32)]),
+    ("rad/s", [0, 0, -1, 1, 0], &[("rpm", 9.549_296_585_513_72)]),
+    ("Pa.s", [1, -1, -1, 0, 0], &[]),
+    ("1/Pa", [-1, 1, 2, 0, 0], &[]),
+    ("Pa", [1, -1, -2, 0, 0], &[]),
+    ("1/K", [0, 0, 0, 0, -1], &[]),
+    ("W/(m.K)", [1, 1, -3, 0, -1], &[]),
 ];
 
 fn xml_escape(s: &str) -> String {
@@ -94,9 +97,9 @@ fn render(bearing: &Bearing, guid: &str) -> String {
         r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="false" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#
     );
     let _ = writeln!(x, "  <UnitDefinitions>");
-    for (name, [kg, m, s, rad], displays) in UNITS {
+    for (name, [kg, m, s, rad, k], displays) in UNITS {
         let mut base = String::new();
-        for (sym, e) in [("kg", kg), ("m", m), ("s", s), ("rad", rad)] {
+        for (sym, e) in [("kg", kg), ("m", m), ("s", s), ("rad", rad), ("K", k)] {
             if *e != 0 {
                 let _ = write!(base, r#" {sym}="{e}""#);
             }

@@ -13,6 +13,7 @@ use crate::bearing::Bearing;
 use crate::dynamic::{Dynamic, DynamicState};
 use crate::model::{Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use crate::quasi_static::QuasiStatic;
+use crate::tribology::{Piezoviscosity, TractionLaw};
 use crate::variables::{self as var, Causality};
 use bincode::Options as _;
 use serde::{Deserialize, Serialize};
@@ -318,6 +319,12 @@ impl Simulation {
             var::CAGE_ANGLE0 => p.cage_angle0,
             var::ROLLER_CROWN_DROP => p.crown_drop,
             var::FLANGE_MU0 => p.flange_mu0,
+            var::OIL_EYRING_STRESS => p.eyring_stress,
+            var::OIL_LIMITING_SHEAR => p.limiting_shear,
+            var::OIL_SHEAR_MODULUS => p.shear_modulus,
+            var::OIL_BETA => p.oil_beta,
+            var::OIL_CONDUCTIVITY => p.oil_conductivity,
+            var::FLANGE_ROUGHNESS => p.flange_roughness,
             var::CONTACT_DAMPING => p.contact_damping,
             var::CONE_MASS => p.cone_mass,
             var::MAX_STEP => p.max_step,
@@ -405,6 +412,12 @@ impl Simulation {
             var::CAGE_ANGLE0 => &mut p.cage_angle0,
             var::ROLLER_CROWN_DROP => &mut p.crown_drop,
             var::FLANGE_MU0 => &mut p.flange_mu0,
+            var::OIL_EYRING_STRESS => &mut p.eyring_stress,
+            var::OIL_LIMITING_SHEAR => &mut p.limiting_shear,
+            var::OIL_SHEAR_MODULUS => &mut p.shear_modulus,
+            var::OIL_BETA => &mut p.oil_beta,
+            var::OIL_CONDUCTIVITY => &mut p.oil_conductivity,
+            var::FLANGE_ROUGHNESS => &mut p.flange_roughness,
             var::CONTACT_DAMPING => &mut p.contact_damping,
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
@@ -456,6 +469,8 @@ impl Simulation {
             var::SLICES => p.slices as i32,
             var::OUTER_LOBES => p.outer_lobes as i32,
             var::INTEGRATOR => p.integrator as i32,
+            var::TRACTION => p.traction as i32,
+            var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
             var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
@@ -489,6 +504,20 @@ impl Simulation {
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
+            var::TRACTION => {
+                p.traction = if value == 0 {
+                    TractionLaw::ThermalEyring
+                } else {
+                    TractionLaw::NewtonianEyring
+                }
+            }
+            var::OIL_PIEZOVISCOSITY => {
+                p.piezoviscosity = if value == 0 {
+                    Piezoviscosity::Barus
+                } else {
+                    Piezoviscosity::Roelands
+                }
+            }
             _ => return Err(AccessError::UnknownReference(vr)),
         }
         if *p != old {

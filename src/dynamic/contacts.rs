@@ -44,15 +44,7 @@ const V_EPS: f64 = tr::DRY_REGULARISATION_SPEED;
 /// dissipated power after 1, 2, 3 steps; without them 6 %).
 const SLOPED_CONTACT_ITERATIONS: usize = 3;
 
-/// Floor of the entrainment speed in the slide-to-roll ratio of the boundary law (m/s).
-///
-/// [W25]'s boundary law is a function of s = v_s / u_e; at (near) standstill u_e -> 0 and its
-/// slope d(mu)/d(v_s) = 40.4 / u_e grows without bound (4e7 s/m at u_e = 1 um/s: steps of
-/// ~1 ns, F11 in docs/robustness.md), and switching to another law below some u_e makes the
-/// traction jump. With u_e floored at 0.04 m/s the law at standstill is a regularised Coulomb
-/// law whose slope at zero sliding, 40.4 / 0.04 = 1e3 s/m, is that of the dry regularisation
-/// (0.1 / 1e-4 s/m), peaking (mu 0.15) at 0.4 mm/s sliding; above 0.04 m/s nothing changes.
-const MIN_BOUNDARY_ENTRAINMENT: f64 = 0.04;
+use tr::MIN_BOUNDARY_ENTRAINMENT;
 
 /// Constants of the contact model.
 #[derive(Debug, Clone)]
@@ -89,8 +81,13 @@ pub(crate) struct Constants {
     /// ln of the Eyring stress tau_0.
     ln_eyring: f64,
     eta0: f64,
-    /// Roelands viscosity of the oil against pressure.
+    /// Roelands viscosity of the oil against pressure (z = 0.4: `traction` = 1).
     viscosity: tr::ViscosityTable,
+    /// Full-film traction law and, for law 0, the lubricated contact laws' data.
+    traction: tr::TractionLaw,
+    lubricant: tr::Lubricant,
+    /// EHL rolling resistance at the raceway slices (lubricated, alpha > 0).
+    rolling_resistance: bool,
     alpha: f64,
     sigma: f64,
     mu: f64,
@@ -126,10 +123,15 @@ struct LineConst {
     ln_film: Vec<f64>,
     /// Mean Hertz pressure squared per unit load per length: p_mean = sqrt(w k_pmean).
     k_pmean: Vec<f64>,
+    /// ln of the EHL rolling couple's constant: couple = 2 F_R R = exp(ln_roll + 0.648 ln u_e
+    /// + 0.246 ln w) (`tribology::rolling_couple_log_constant`; -inf without rolling resistance).
+    ln_roll: Vec<f64>,
+    /// Square of the rolling couple's regularising angular speed per slice (0.1 mm/s / R_eq).
+    roll_eps2: Vec<f64>,
 }
 
 impl LineConst {
-    fn new(line: &crate::geometry::ContactLine, p: &Parameters, e_prime: f64) -> LineConst {
+    fn new(line: &crate::geometry::ContactLine, p: &Parameters, e_prime: f64, slice_len: f64) -> LineConst {
         LineConst {
             reference: line.point[0],
             normal: line.normal,
@@ -140,6 +142,12 @@ impl LineConst {
                 .iter()
                 .map(|r| tr::film_line_log_constant(p.eta0, p.alpha.max(1e-12), e_prime, *r))
                 .collect(),
+            ln_roll: line
+                .r_bar
+                .iter()
+                .map(|r| tr::rolling_couple_log_constant(p.eta0, p.alpha, e_prime, *r, slice_len))
+                .collect(),
+            roll_eps2: line.r_bar.iter().map(|r| (V_EPS / r).powi(2)).collect(),
         }
     }
 }
@@ -197,8 +205,8 @@ impl Constants {
             shrink: g.crown.iter().map(|c| c / cos_h).collect(),
             slice_len: g.slice_len,
             inv_slice_len: 1.0 / g.slice_len,
-            cone: LineConst::new(&g.cone, p, g.e_prime),
-            cup: LineConst::new(&g.cup, p, g.e_prime),
+            cone: LineConst::new(&g.cone, p, g.e_prime, g.slice_len),
+            cup: LineConst::new(&g.cup, p, g.e_prime, g.slice_len),
             flange,
             cos_o: g.cup_angle.cos(),
             half_clearance: 0.5 * p.clearance,
@@ -217,6 +225,9 @@ impl Constants {
             e_prime: g.e_prime,
             eta0: p.eta0,
             viscosity: tr::ViscosityTable::new(p.eta0),
+            traction: p.traction,
+            lubricant: p.lubricant(g.e_prime),
+            rolling_resistance: p.lubrication != Lubrication::Dry && p.alpha > 0.0,
             alpha: p.alpha,
             sigma: p.roughness,
             mu: p.mu,
@@ -372,6 +383,24 @@ fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e
         // no rolling, no film: the boundary law at the floored entrainment speed
         return tr::boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs;
     }
+    match c.traction {
+        tr::TractionLaw::NewtonianEyring => newtonian_traction_coef(c, line, k, q, vs, u_e),
+        tr::TractionLaw::ThermalEyring => thermal_traction_coef(c, line, k, q, vs, u_e),
+    }
+}
+
+/// [`traction_coef`] with the thermal Eyring law (`traction` = 0, `Lubricant::raceway_mu`).
+#[inline(always)]
+fn thermal_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
+    let w = q * c.inv_slice_len;
+    let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
+    let h_iso = fm::exp(line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w));
+    c.lubricant.raceway_mu(w, p_mean, h_iso, u_e, vs) * q / vs
+}
+
+/// [`traction_coef`] with the isothermal Newtonian Eyring law (`traction` = 1).
+#[inline(always)]
+fn newtonian_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
     let w = q * c.inv_slice_len;
     let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
     // sliding speed with the slide-to-roll ratio floored at 1e-9
@@ -415,6 +444,22 @@ fn full_film_stress(c: &Constants, line: &LineConst, k: usize, w: f64, ln_h: f64
     let tau_l = tr::LIMITING_SHEAR * p_mean;
     let (e2, l2) = (tau_e * tau_e, tau_l * tau_l);
     (tr::LIMITING_SHEAR * tau_e, (e2 * e2 + l2 * l2).sqrt().sqrt())
+}
+
+/// Traction coefficient of the rib contact (force on the roller -coef v_t) for normal load
+/// `q`, sliding speed `vs` and entrainment speed `u_e` (`tribology::rib`).
+fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64) -> f64 {
+    let h_iso = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q);
+    let (ea, eb, ph) = fl.hertz.ellipse(q);
+    match c.traction {
+        tr::TractionLaw::NewtonianEyring => {
+            let ratio = if c.sigma > 0.0 { h_iso / c.sigma } else { f64::INFINITY };
+            let asperity = q * tr::flange_boundary_mu(c.flange_mu0, ratio) / (vs * vs + V_EPS * V_EPS).sqrt();
+            let viscous = tr::flange_viscous_traction_with(c.eta0, c.ln_eta0_967, vs, h_iso, ea, eb, ph) / vs;
+            asperity + viscous
+        }
+        tr::TractionLaw::ThermalEyring => c.lubricant.rib_force(q, vs, u_e, h_iso, ea, eb, ph) / vs,
+    }
 }
 
 /// ln(1e-9): the film thickness floor of the Eyring law.
@@ -550,9 +595,35 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
         sum.m += lever.cross(&fk);
         sum.q += q;
         sum.power += coef * vs * vs + damping_power.max(0.0);
+        if c.rolling_resistance && u_e > 0.0 {
+            // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
+            // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
+            // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
+            let w = q * c.inv_slice_len;
+            let heating = if c.traction == tr::TractionLaw::ThermalEyring {
+                let p_h = 4.0 / PI * (w * line.k_pmean[k]).sqrt();
+                tr::thermal_reduction(c.lubricant.inlet_heating * u_e * u_e, p_h / c.e_prime, vs / u_e)
+            } else {
+                1.0
+            };
+            let couple = heating * fm::exp(line.ln_roll[k] + 0.648 * fm::ln(u_e) + 0.246 * fm::ln(w));
+            let w_roll = w_rel_perp(race, &n, &lever);
+            let norm = (w_roll.norm_squared() + line.roll_eps2[k]).sqrt();
+            let m_roll = w_roll * (-couple / norm);
+            sum.m += m_roll;
+            sum.power += -m_roll.dot(&w_roll);
+        }
         sum.extrapolated |= ext;
     }
     sum
+}
+
+/// The roller's angular velocity relative to the raceway, without its part about the contact
+/// normal `n` (spin): the rolling rotation the EHL rolling couple resists.
+#[inline(always)]
+fn w_rel_perp(race: &Race, n: &V3, _lever: &V3) -> V3 {
+    let w_rel = race.w - race.ring_omega;
+    w_rel - n * w_rel.dot(n)
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
@@ -717,12 +788,7 @@ pub(crate) fn evaluate(
                         let v_point = V3::x().cross(&pk) * psid;
                         let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
                         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-                        let h = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q);
-                        let ratio = if c.sigma > 0.0 { h / c.sigma } else { f64::INFINITY };
-                        let (ea, eb, ph) = fl.hertz.ellipse(q);
-                        let asperity = q * tr::flange_boundary_mu(c.flange_mu0, ratio) / (vs * vs + V_EPS * V_EPS).sqrt();
-                        let viscous = tr::flange_viscous_traction_with(c.eta0, c.ln_eta0_967, vs, h, ea, eb, ph) / vs;
-                        asperity + viscous
+                        rib_traction_coef(c, fl, q, vs, u_e)
                     };
                     (-v_t * coef, coef * vs * vs)
                 } else {

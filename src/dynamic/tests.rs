@@ -248,11 +248,15 @@ fn aligned_pure_axial_load_gives_every_roller_the_same_statistics() {
 
 #[test]
 fn low_speed_contact_loads_agree_with_the_quasi_static_model() {
-    // 100 rpm, combined load: inertia and traction are small, the time-averaged cone
-    // displacement and largest roller load match the quasi-static solution within 1 %.
+    // 100 rpm, combined load: inertia is small, the time-averaged cone displacement and
+    // largest roller load match the quasi-static solution within 1 %. With the isothermal
+    // Newtonian traction (`traction` = 1) the raceway traction is small too; the default
+    // thermal Eyring film carries 0.01-0.02 of the load in traction at 100 rpm, which tilts the
+    // rollers and moves the cone by 1.6 % (the quasi-static load balance has no traction).
     let setup = [(var::SPEED, 100.0 * RPM), (var::FY, 10_000.0)];
     let qs = quasi_static_outputs("TRB130x230", 10, &setup);
     let mut s = sim("TRB130x230", 10, &setup);
+    s.set_integer(var::TRACTION, 1).unwrap();
     let a = averages(&mut s, 2e-4, 100);
     assert!(
         (a.cone_x - qs.cone_x).abs() < 0.01 * qs.cone_x,
@@ -270,12 +274,15 @@ fn low_speed_contact_loads_agree_with_the_quasi_static_model() {
 
 #[test]
 fn refining_tolerance_and_slices_changes_the_results_little() {
-    let base = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 100);
+    // at 500 rpm, where the published geometry's skew is largest (0.08 deg; near 3500 rpm it
+    // crosses zero and a relative change means nothing)
+    let speed = (var::SPEED, 500.0 * RPM);
+    let base = averages(&mut sim("TRB130x230", 10, &[speed]), 1e-4, 100);
     let tight = {
-        let mut s = sim("TRB130x230", 10, &[(var::TOLERANCE, 0.5e-6)]);
+        let mut s = sim("TRB130x230", 10, &[speed, (var::TOLERANCE, 0.5e-6)]);
         averages(&mut s, 1e-4, 100)
     };
-    let fine = averages(&mut sim("TRB130x230", 20, &[]), 1e-4, 100);
+    let fine = averages(&mut sim("TRB130x230", 20, &[speed]), 1e-4, 100);
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
     // halving the tolerance: torque and skew within 1 %
     assert!(
@@ -314,18 +321,21 @@ fn apex_consistent_bearing() -> Bearing {
 #[test]
 fn tilt_is_far_below_skew_and_the_centrifugal_effect_acts_on_skew_the_gyroscopic_on_tilt() {
     // [W25]: tilt orders of magnitude below skew; centrifugal effect mainly affects skew,
-    // gyroscopic effect mainly tilt.
-    let all = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 100);
+    // gyroscopic effect mainly tilt. At 1500 rpm: with the published geometry the mean skew
+    // passes through zero near 3500 rpm (docs/validation.md), where the first statement
+    // holds only by a factor of about 10.
+    let speed = (var::SPEED, 1500.0 * RPM);
+    let all = averages(&mut sim("TRB130x230", 10, &[speed]), 1e-4, 100);
     assert!(
-        all.tilt_max < 0.1 * all.skew_mean.abs(),
+        all.tilt_max < 0.01 * all.skew_mean.abs(),
         "tilt {} vs skew {}",
         all.tilt_max,
         all.skew_mean
     );
-    let mut s = sim("TRB130x230", 10, &[]);
+    let mut s = sim("TRB130x230", 10, &[speed]);
     s.set_boolean(var::CENTRIFUGAL, false).unwrap();
     let no_cf = averages(&mut s, 1e-4, 100);
-    let mut s = sim("TRB130x230", 10, &[]);
+    let mut s = sim("TRB130x230", 10, &[speed]);
     s.set_boolean(var::GYROSCOPIC, false).unwrap();
     let no_gyro = averages(&mut s, 1e-4, 100);
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
@@ -903,4 +913,74 @@ fn high_speed_cage_whirls_inside_its_land_and_energy_is_conserved() {
         ecc_max > 0.5 * b.guide_clearance && ecc_max < b.guide_clearance,
         "cage eccentricity {ecc_max} m"
     );
+}
+
+/// Skew, tilt, torque and per-source skew moments over a sweep (exploration):
+/// BEARING (preset or JSON path), RPMS="500,3500", FXS="30000", XI (deg), T (s), SLICES,
+/// TRACTION, PARAMS="oil.beta=0,flange.roughness=4e-7" (Real parameters by name).
+#[test]
+#[ignore]
+fn explore_sweep() {
+    let env = |k: &str, d: &str| std::env::var(k).unwrap_or(d.to_string());
+    let bearing = env("BEARING", "TRB130x230");
+    let b = if bearing.ends_with(".json") {
+        Bearing::from_json(&std::fs::read_to_string(&bearing).unwrap()).unwrap()
+    } else {
+        Bearing::preset(&bearing).unwrap()
+    };
+    let list = |s: String| -> Vec<f64> { s.split(',').map(|v| v.trim().parse().unwrap()).collect() };
+    let t_end: f64 = env("T", "0.02").parse().unwrap();
+    let h = 1e-4;
+    let steps = (t_end / h).round() as usize;
+    for fx in list(env("FXS", "30000")) {
+        for rpm in list(env("RPMS", "3500")) {
+            let mut s = Simulation::new(b.clone());
+            s.set_integer(var::FIDELITY, 1).unwrap();
+            s.set_integer(var::SLICES, env("SLICES", "20").parse().unwrap()).unwrap();
+            s.set_integer(var::TRACTION, env("TRACTION", "0").parse().unwrap()).unwrap();
+            s.set_real(var::SPEED, rpm * RPM).unwrap();
+            s.set_real(var::FX, fx).unwrap();
+            s.set_real(var::XI, env("XI", "0").parse::<f64>().unwrap().to_radians()).unwrap();
+            for kv in env("PARAMS", "").split(',').filter(|s| !s.is_empty()) {
+                let (k, v) = kv.split_once('=').unwrap();
+                let (vr, _) = var::find(k, s.n_rollers()).unwrap();
+                s.set_real(vr, v.parse().unwrap()).unwrap();
+            }
+            let z = s.n_rollers() as f64;
+            let (mut n, mut skew, mut skew_max, mut tilt_max, mut torque, mut power) = (0.0, 0.0, 0.0_f64, 0.0_f64, 0.0, 0.0);
+            let (mut nis, mut nos, mut nfs, mut qc, mut qf) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            let t0 = std::time::Instant::now();
+            run(&mut s, h, steps, |k, o| {
+                if k < steps / 2 {
+                    return;
+                }
+                n += 1.0;
+                skew += o.skew_mean;
+                skew_max = skew_max.max(o.skew_max);
+                tilt_max = tilt_max.max(o.tilt_max);
+                torque += o.friction_torque;
+                power += o.power_loss;
+                nis += o.nis.iter().sum::<f64>() / z;
+                nos += o.nos.iter().sum::<f64>() / z;
+                nfs += o.nfs.iter().sum::<f64>() / z;
+                qc += o.qc.iter().sum::<f64>() / z;
+                qf += o.qf_max;
+            });
+            println!(
+                "Fx {fx:.0} {rpm:.0} rpm: skew mean {:.4} max {:.4} deg, tilt max {:.2} mdeg, T {:.3} N m, P {:.0} W (T w {:.0}) | Nis {:.3} Nos {:.3} Nfs {:.3} | Qc {:.1} Qf {:.0} | wall {:.1} s",
+                (skew / n).to_degrees(),
+                skew_max.to_degrees(),
+                tilt_max.to_degrees() * 1e3,
+                torque / n,
+                power / n,
+                torque / n * rpm * RPM,
+                nis / n,
+                nos / n,
+                nfs / n,
+                qc / n,
+                qf / n,
+                t0.elapsed().as_secs_f64()
+            );
+        }
+    }
 }

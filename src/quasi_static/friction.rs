@@ -30,6 +30,8 @@ use crate::tribology as tr;
 pub struct SliceWeights {
     /// |sliding speed| per unit cone speed.
     pub slide: Vec<f64>,
+    /// Entrainment speed per unit cone speed.
+    pub entrain: Vec<f64>,
     /// Axial station times the sign of the sliding speed.
     pub skew: Vec<f64>,
     /// Sign of the sliding speed.
@@ -104,6 +106,9 @@ pub struct FrictionModel {
     sigma: f64,
     mu: f64,
     flange_mu0: f64,
+    /// Full-film traction law; for law 0 the lubricated contact laws' data.
+    traction: tr::TractionLaw,
+    lubricant: tr::Lubricant,
 }
 
 impl FrictionModel {
@@ -115,6 +120,7 @@ impl FrictionModel {
         let cup_kin = |k: usize| Kinematics::new(spin_ratio * g.slice_radius[k], -cage_ratio * g.cup.raceway_radius[k]);
         let weights = |kin: &dyn Fn(usize) -> Kinematics| SliceWeights {
             slide: (0..g.slices).map(|k| kin(k).slide.abs()).collect(),
+            entrain: (0..g.slices).map(|k| kin(k).entrain).collect(),
             skew: (0..g.slices).map(|k| g.slice_s[k] * kin(k).slide.signum()).collect(),
             sign: (0..g.slices).map(|k| kin(k).slide.signum()).collect(),
         };
@@ -158,7 +164,53 @@ impl FrictionModel {
             sigma: p.roughness,
             mu: p.mu,
             flange_mu0: p.flange_mu0,
+            traction: p.traction,
+            lubricant: p.lubricant(g.e_prime),
         }
+    }
+
+    /// Whether [`FrictionModel::evaluate`] needs the converged slice loads (`traction` = 0
+    /// with EHL: the traction law is evaluated slice by slice).
+    pub fn needs_slice_loads(&self, lubrication: Lubrication) -> bool {
+        lubrication == Lubrication::Ehl && self.traction == tr::TractionLaw::ThermalEyring
+    }
+
+    /// One raceway contact, slice by slice (`traction` = 0): each loaded slice's traction at
+    /// its own load, pressure, entrainment and sliding speed (the law is far from linear in
+    /// the slide-to-roll ratio, so a mean over the line would misplace the plateau), and its
+    /// EHL rolling resistance on both surfaces.
+    fn raceway_sliced(&self, line: &ContactLine, weights: &SliceWeights, loads: &[f64], speed: f64) -> RacewayFriction {
+        let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        let e_prime = self.lubricant.e_prime;
+        let mut f = RacewayFriction::default();
+        for (k, &q) in loads.iter().enumerate() {
+            if !(q > 0.0) {
+                continue;
+            }
+            let w = q / self.slice_len;
+            let u_e = speed.abs() * weights.entrain[k];
+            let v_s = speed.abs() * weights.slide[k];
+            let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
+            let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
+            let h_iso = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w);
+            let mu = if u_e > 1e-6 {
+                self.lubricant.raceway_mu(w, p_mean, h_iso, u_e, v_s)
+            } else {
+                tr::boundary_mu(v_s / tr::MIN_BOUNDARY_ENTRAINMENT)
+            };
+            let rolling = if u_e > 0.0 {
+                let p_h = 4.0 / std::f64::consts::PI * p_mean;
+                let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, v_s / u_e);
+                heating * tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], q, self.slice_len)
+            } else {
+                0.0
+            };
+            f.torque += mu * q * weights.slide[k] + 2.0 * rolling * weights.entrain[k];
+            f.skew += mu * q * sign * weights.skew[k];
+            f.slide_force += mu * q * sign * weights.sign[k];
+            f.rolling += rolling;
+        }
+        f
     }
 
     /// One raceway contact: friction power per unit speed, skew moment on the roller, net
@@ -187,7 +239,8 @@ impl FrictionModel {
             }
         };
         RacewayFriction {
-            torque: mu * s.q_slide + f_roll * line.mid.entrain,
+            // rolling resistance on both surfaces: 2 F u_e
+            torque: mu * s.q_slide + 2.0 * f_roll * line.mid.entrain,
             skew: mu * sign * s.q_skew,
             // Traction on the ring = +mu q sgn(v_s) e_t with v_s = roller - ring.
             slide_force: mu * sign * s.q_sign,
@@ -204,15 +257,29 @@ impl FrictionModel {
         evaluated: usize,
         inputs: &Inputs,
         lubrication: Lubrication,
+        slice_loads: &[f64],
         out: &mut Outputs,
     ) -> TorqueParts {
         let speed = inputs.speed;
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let mut parts = TorqueParts::default();
         let (ri, ro) = self.ring_radii;
+        let sliced = self.needs_slice_loads(lubrication);
+        let ns = g.slices;
         for (j, e) in evals.iter().enumerate().take(evaluated) {
-            let cone = self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication);
-            let cup = self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication);
+            let (cone, cup) = if sliced {
+                // slice_loads: per roller, the cone's slices then the cup's
+                let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
+                (
+                    self.raceway_sliced(&g.cone, &self.cone_weights, &loads[..ns], speed),
+                    self.raceway_sliced(&g.cup, &self.cup_weights, &loads[ns..], speed),
+                )
+            } else {
+                (
+                    self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication),
+                    self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication),
+                )
+            };
             parts.raceway += cone.torque + cup.torque;
             out.nis[j] = cone.skew;
             out.nos[j] = cup.skew;
@@ -232,8 +299,14 @@ impl FrictionModel {
                         let u_e = speed.abs() * kin.entrain;
                         let (a, b, p_h) = f.hertz.ellipse(qf);
                         let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
-                        let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
-                        qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio) + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h)
+                        match self.traction {
+                            tr::TractionLaw::ThermalEyring => self.lubricant.rib_force(qf, v_s.abs(), u_e, h, a, b, p_h),
+                            tr::TractionLaw::NewtonianEyring => {
+                                let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
+                                qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)
+                                    + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h)
+                            }
+                        }
                     }
                 };
                 parts.flange += f_total * kin.slide.abs();

@@ -153,6 +153,9 @@ pub struct QuasiStatic {
     regularisation: f64,
     /// The roller skew model [D19] (`skewModel` = true).
     skew: Option<skew::SkewSetup>,
+    /// Converged slice loads per roller (cone slices, then cup slices) for the friction model
+    /// of `traction` = 0; kept to allocate once.
+    slice_load_buffer: Vec<f64>,
 }
 
 impl QuasiStatic {
@@ -189,6 +192,7 @@ impl QuasiStatic {
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
             skew,
+            slice_load_buffer: Vec::new(),
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -1066,9 +1070,19 @@ impl QuasiStatic {
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
         let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
+        let mut loads = std::mem::take(&mut self.slice_load_buffer);
+        if self.friction.needs_slice_loads(self.params.lubrication) {
+            let ns = self.geometry.slices;
+            loads.resize(2 * ns * z, 0.0);
+            for j in 0..evaluated {
+                let (cone, cup) = loads[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
+                self.slice_loads(x, j, cone, cup);
+            }
+        }
         let torque = self
             .friction
-            .evaluate(&self.geometry, &self.evals, evaluated, inputs, self.params.lubrication, out);
+            .evaluate(&self.geometry, &self.evals, evaluated, inputs, self.params.lubrication, &loads, out);
+        self.slice_load_buffer = loads;
         out.friction_torque_raceway = torque.raceway;
         out.friction_torque_flange = torque.flange;
         out.friction_torque_cage = 0.0;
