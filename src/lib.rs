@@ -16,6 +16,7 @@
 pub mod bearing;
 pub mod contact;
 pub mod dynamic;
+pub mod ehl_line;
 pub mod fastmath;
 pub mod fmi;
 pub mod geometry;
