@@ -68,6 +68,40 @@ fn d19_force_preload_gives_lower_torque_than_displacement_preload() {
 }
 
 #[test]
+fn d19_friction_thrust_on_the_cone_acts_along_the_applied_axial_load() {
+    // The rib friction drags the large roller end along with the cone (positive skew at
+    // positive speed); a roller skewed so slides on the cone towards its small end, so the
+    // friction thrust mu q |sin phi| of Eq. (7) acts on the cone along its generatrix towards
+    // +x, with the applied axial load (docs/model.md, "Friction thrust"). The contact loads
+    // then carry Fx plus the thrust (force preload), and the axial reaction is the contact
+    // loads' axial sum minus the thrust (displacement preload). [D19] states the opposite
+    // sense (the inner-race thrust offsets the axial load, its Eq. (9b)); docs/model.md
+    // explains why the model does not follow it.
+    let (ai, af) = (12.75_f64.to_radians(), (90.0_f64 - 13.15).to_radians());
+    let sums = |o: &trb::model::Outputs, mu: f64| {
+        let normal: f64 = o.qi.iter().zip(&o.qf).map(|(qi, qf)| qi * ai.sin() + qf * af.sin()).sum();
+        let thrust: f64 = o.qi.iter().zip(&o.skew).map(|(qi, s)| mu * qi * s.sin().abs() * ai.cos()).sum();
+        (normal, thrust)
+    };
+    for mu in [0.3, 0.5] {
+        let f = d19(D19Preload::Force, mu, 0.9e-3).unwrap();
+        let (normal, thrust) = sums(&f, mu);
+        assert!(thrust > 0.01 * 12_970.0, "mu {mu}: thrust {thrust}");
+        assert!(
+            (normal - thrust - 12_970.0).abs() <= 1e-3 * thrust,
+            "mu {mu}, force preload: contact loads' axial sum {normal}, thrust {thrust}"
+        );
+        let d = d19(D19Preload::Displacement, mu, 0.9e-3).unwrap();
+        let (normal, thrust) = sums(&d, mu);
+        assert!(
+            (normal - thrust - d.reaction_fx).abs() <= 1e-3 * thrust,
+            "mu {mu}, displacement preload: contact loads' axial sum {normal}, thrust {thrust}, reaction {}",
+            d.reaction_fx
+        );
+    }
+}
+
+#[test]
 fn d19_skew_off_keeps_the_in_plane_solution() {
     // skewModel = false is the default and leaves skew and pocket outputs at zero.
     let o = solve_case("32018X", 0.0, |_, _| {}).unwrap();

@@ -22,9 +22,15 @@
 //! F_c = K_c (|zeta| - phi_max)^+, so both conditions hold identically and Newton sees a
 //! piecewise-smooth residual (semismooth Newton). K_c only scales the unknown.
 //!
-//! Skew also adds friction thrust along the contact lines [D19]: mu q sin(phi) per slice,
-//! opposing the axial sliding of the skewed roller on each raceway (opposite on cone and cup),
-//! and the pocket friction mu F_c at the two corners (a tilt couple).
+//! Skew also adds friction thrust along the contact lines [D19]: mu q sin(phi) per slice along
+//! the raceway's generatrix, at the slice's contact point, opposing the axial sliding of the
+//! skewed roller on that raceway. The roller's spin adds nothing along its own axis, so that
+//! sliding is the ring's surface speed resolved on the skewed axis: towards the small end on the
+//! cone and towards the large end on the cup for phi > 0 and positive speed. The thrust on the
+//! roller is then towards its large end from the cone and its small end from the cup (a tilt
+//! couple), and the cone's reaction points towards +x, along the applied axial load (the
+//! opposite of [D19]'s statement about its Eq. (9b); docs/model.md). Also the pocket friction
+//! mu F_c at the two corners (a tilt couple).
 //!
 //! Solver: Newton on 3 + 4Z unknowns started from the in-plane solution; the per-roller
 //! 4x4 blocks and their couplings to the cone are built by central differences of the roller
@@ -58,8 +64,15 @@ const MAX_ITERATIONS: u32 = 200;
 struct SkewLine {
     /// Interference change per phi^2 (m/rad^2): +cos(a_o) s^2 / (2 r_c) on the cup, negative on the cone.
     shift: Vec<f64>,
-    /// Roller radius at the slice (lever of the thrust about the roller centre).
-    radius: Vec<f64>,
+    /// Unit generatrix of the raceway in the axial plane, from the large towards the small
+    /// roller end: the line of action of the friction thrust (Coulomb, tangent to the raceway).
+    tangent: [f64; 2],
+    /// Tilt moment about the roller centre of a unit thrust along `tangent` at the slice's
+    /// contact point: cross(P - C, t) (about +R cos a_h on the cone, -R cos a_h on the cup).
+    thrust_lever: Vec<f64>,
+    /// In-plane moment about the bearing origin of a unit thrust along `tangent` at the
+    /// slice's contact point: cross(P, t) (the cone's reaction moment).
+    thrust_chi: Vec<f64>,
     /// Kinematic sliding speed (roller - ring) per unit cone speed, signed.
     slide: Vec<f64>,
     /// Rolling speed per unit cone speed (roller surface speed magnitude).
@@ -90,8 +103,7 @@ pub(super) struct SkewSetup {
     flange_lever_max: f64,
     flange_slide: f64,
     rib_radius: f64,
-    /// Roller axis (x, r) and length; end radii (pocket contacts).
-    axis: [f64; 2],
+    /// Roller length; end radii (pocket contacts).
     length: f64,
     end_radii: (f64, f64),
     /// Roller spin per unit cone speed.
@@ -136,9 +148,16 @@ impl SkewSetup {
         let ah = g.half_angle;
         let line = |which: &crate::geometry::ContactLine, race_angle: f64, sign: f64, ring_speed: f64| {
             let n = g.slices;
+            let tangent = [race_angle.cos(), -race_angle.sin()];
             let mut out = SkewLine {
                 shift: Vec::with_capacity(n),
-                radius: g.slice_radius.clone(),
+                tangent,
+                thrust_lever: which
+                    .point
+                    .iter()
+                    .map(|p| cross([p[0] - g.center[0], p[1] - g.center[1]], tangent))
+                    .collect(),
+                thrust_chi: which.point.iter().map(|p| cross(*p, tangent)).collect(),
                 slide: Vec::with_capacity(n),
                 rolling: Vec::with_capacity(n),
                 microslip: Vec::with_capacity(n),
@@ -203,7 +222,6 @@ impl SkewSetup {
             flange_lever_max,
             flange_slide,
             rib_radius,
-            axis: g.axis,
             length: l,
             end_radii: (rl, rs),
             spin: spin_ratio,
@@ -249,7 +267,6 @@ impl QuasiStatic {
             qc: f_c,
             ..SkewEval::default()
         };
-        let axis = Vector2::new(sk.axis[0], sk.axis[1]);
         let mut force = Vector2::zeros();
         let mut tilt = 0.0;
         // Rolling-speed friction coefficient (signed like the speed), for the thrust and the pocket.
@@ -265,7 +282,8 @@ impl QuasiStatic {
             (&g.cup, &sk.cup, base_o, &self.cone_chi[..], false),
         ] {
             let n = Vector2::new(line.normal[0], line.normal[1]);
-            let (mut sum_q, mut sum_lever, mut sum_chi, mut geom, mut fric, mut thrust_tilt) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+            let (mut sum_q, mut sum_lever, mut sum_chi, mut geom, mut fric) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            let (mut thrust_tilt, mut thrust_chi) = (0.0, 0.0);
             let mut max_delta = f64::NEG_INFINITY;
             for k in 0..g.slices {
                 let gamma_term = if is_cone { st.gamma * chi[k] } else { 0.0 };
@@ -284,25 +302,25 @@ impl QuasiStatic {
                 geom -= qk * 2.0 * sl.shift[k] * phi;
                 // Traction on the roller -q mu(v_s) e_t at station s: moment -s F_t.
                 fric += g.slice_s[k] * qk * dry_mu(mu, speed * sl.slide[k]);
-                // Thrust along the axis at the contact (cone at -R p, cup at +R p): tilt moment
-                // cross(-+R p, F a) = +-R F.
-                thrust_tilt += qk * sl.radius[k];
+                // Thrust along the generatrix at the slice's contact point: its tilt moment
+                // about the roller centre and (cone) its moment about the bearing origin.
+                thrust_tilt += qk * sl.thrust_lever[k];
+                thrust_chi += qk * sl.thrust_chi[k];
             }
             e.gap = e.gap.min(-max_delta);
-            // Thrust along the roller axis: sign(line) mu sin(phi) q.
+            // Thrust on the roller along the raceway's generatrix t, per unit load:
+            // sign(line) mu sin(phi) (against the roller's axial sliding on that raceway).
             let thrust = sl.thrust_sign * mu_roll(sl.rolling[g.slices / 2]) * sin_phi;
-            force += n * sum_q + axis * (thrust * sum_q);
-            // cone at -R p: +R F; cup at +R p: -R F.
-            let thrust_m = -sl.thrust_sign * thrust * thrust_tilt;
-            tilt += sum_lever + thrust_m;
+            let t = Vector2::new(sl.tangent[0], sl.tangent[1]);
+            force += n * sum_q + t * (thrust * sum_q);
+            tilt += sum_lever + thrust * thrust_tilt;
             if is_cone {
                 e.qi = sum_q;
                 e.nit = sum_lever;
                 e.nis = geom + fric;
-                e.f_cone -= n * sum_q + axis * (thrust * sum_q);
-                // moment about the origin of the thrust reaction at the mean cone point
-                let mid = g.slices / 2;
-                e.m_cone -= sum_chi + cross(line.point[mid], [sk.axis[0] * thrust * sum_q, sk.axis[1] * thrust * sum_q]);
+                e.f_cone -= n * sum_q + t * (thrust * sum_q);
+                // Moment about the origin of the thrust reaction, slice by slice.
+                e.m_cone -= sum_chi + thrust * thrust_chi;
             } else {
                 e.qo = sum_q;
                 e.not = sum_lever;
@@ -857,4 +875,113 @@ pub(super) fn microslip_power(mu: f64, v_k: f64, micro: f64, u0: f64, v_axial: f
         sum += w * p * dry_mu(mu, speed) * speed;
     }
     sum * du / 3.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Lubrication, Parameters};
+    use crate::quasi_static::studies::rpm;
+
+    /// The [D19] case (32018X, dry, Fr = 35 kN, pocket 0.9 mm) at `mu` and `speed_rpm`, force
+    /// preload 12,970 N or displacement preload 0.01 mm: the model, its inputs, the solution
+    /// vector and the outputs.
+    fn d19_solved(mu: f64, force: bool, speed_rpm: f64) -> (QuasiStatic, Inputs, Vec<f64>, Outputs) {
+        let b = Bearing::preset("32018X").unwrap();
+        let mut p = Parameters::from_bearing(&b);
+        let mut i = Inputs::from_bearing(&b);
+        p.skew_model = true;
+        p.lubrication = Lubrication::Dry;
+        p.mu = mu;
+        p.pocket_clearance = 0.9e-3;
+        i.speed = rpm(speed_rpm);
+        i.fy = 35_000.0;
+        i.fz = 0.0;
+        if force {
+            p.preload = Preload::Force;
+            i.fx = 12_970.0;
+        } else {
+            p.preload = Preload::Displacement;
+            i.axial_displacement = 0.01e-3;
+        }
+        let mut qs = QuasiStatic::new(&b, &p).unwrap();
+        let mut out = Outputs::new(b.roller_count);
+        let mut x = Vec::new();
+        qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
+        (qs, i, x, out)
+    }
+
+    /// The load the shaft applies to the cone (Fx, Fy, Fz, My, Mz), rebuilt independently of
+    /// the solver's roller evaluation: per roller and slice the cone contact force -q n_i at
+    /// the slice's contact point, plus the friction thrust mu q |sin phi| along the cone's
+    /// generatrix (Coulomb: tangent to the raceway) in the sense of the roller's axial sliding
+    /// on the cone, taken from 3-D rigid-body kinematics (roller centre fixed in the cage
+    /// frame, cone turning at omega_c about x, roller spinning about its skewed axis a', which
+    /// adds nothing along a'); plus the rib contact force -Q_f n_f.
+    fn cone_load_rebuilt(qs: &QuasiStatic, i: &Inputs, x: &[f64], out: &Outputs) -> [f64; 5] {
+        let g = &qs.geometry;
+        let mu = qs.params.mu;
+        let omega_c = i.speed - qs.cage_speed(i.speed);
+        let gen = [g.cone_angle.cos(), -g.cone_angle.sin()];
+        let n = g.cone.normal;
+        let (mut cone, mut cup) = (vec![0.0; g.slices], vec![0.0; g.slices]);
+        let mut load = [0.0; 5];
+        for j in 0..g.z {
+            qs.skew_slice_loads(x, j, &mut cone, &mut cup);
+            let phi = out.skew[j];
+            // Skewed roller axis in (x, r, t): the small end moves towards -t for phi > 0.
+            let a = [g.axis[0] * phi.cos(), g.axis[1] * phi.cos(), -phi.sin()];
+            let (mut fx, mut fr, mut m) = (0.0, 0.0, 0.0);
+            for k in 0..g.slices {
+                let q = cone[k];
+                let p = g.cone.point[k];
+                let t = g.slice_s[k] * a[2];
+                // Cone surface velocity omega_c e_x x (x, r, t) = omega_c (0, -t, r).
+                let v_cone = [0.0, -omega_c * t, omega_c * p[1]];
+                let slide = -(v_cone[0] * a[0] + v_cone[1] * a[1] + v_cone[2] * a[2]);
+                // Friction on the cone along the roller's sliding on it.
+                let thrust = slide.signum() * mu * q * phi.sin().abs();
+                let f = [-q * n[0] + thrust * gen[0], -q * n[1] + thrust * gen[1]];
+                fx += f[0];
+                fr += f[1];
+                m += cross(p, f);
+            }
+            if let Some(fl) = &g.flange {
+                let f = [-out.qf[j] * fl.normal[0], -out.qf[j] * fl.normal[1]];
+                fx += f[0];
+                fr += f[1];
+                m += cross(fl.point, f);
+            }
+            let psi = std::f64::consts::TAU * j as f64 / g.z as f64;
+            load[0] -= fx;
+            load[1] -= fr * psi.cos();
+            load[2] -= fr * psi.sin();
+            load[3] += psi.sin() * m;
+            load[4] -= psi.cos() * m;
+        }
+        load
+    }
+
+    #[test]
+    fn cone_equilibrium_rebuilt_from_slices_with_the_kinematic_thrust() {
+        // mu = 0.3: skew below the pocket limit; mu = 0.5: at the limit, pocket contact. Both
+        // senses of rotation (the skew reverses, the thrust on the cone does not).
+        for (mu, force, rpm_) in [(0.3, true, 60.0), (0.5, true, 60.0), (0.5, true, -60.0), (0.5, false, 60.0)] {
+            let (qs, i, x, out) = d19_solved(mu, force, rpm_);
+            let rebuilt = cone_load_rebuilt(&qs, &i, &x, &out);
+            let fx = if force { i.fx } else { out.reaction_fx };
+            let expected = [fx, i.fy, i.fz, out.reaction_my, out.reaction_mz];
+            let tol = [0.05, 0.05, 0.05, 0.05 * 0.06, 0.05 * 0.06];
+            for c in 0..5 {
+                assert!(
+                    (rebuilt[c] - expected[c]).abs() <= tol[c],
+                    "mu {mu}, force {force}, {rpm_} rpm, component {c}: rebuilt {} solver {}",
+                    rebuilt[c],
+                    expected[c]
+                );
+            }
+            // The skew follows the sense of rotation (the rib drags the large end along).
+            assert!(out.skew.iter().all(|s| *s * rpm_ > 0.0), "{:?}", out.skew);
+        }
+    }
 }
