@@ -41,19 +41,22 @@ fn the_three_integrators_agree_on_the_w25_case_and_under_combined_load() {
         let gill = series(1, 1e-6, fy);
         let rosenbrock = series(2, 1e-6, fy);
         let name = format!("Fy {fy} N");
-        // fourth order at 1 us: measured 1.5e-9..2.8e-9 torque, 1e-10 skew;
-        // Rosenbrock at 1e-6: measured 8.6e-6 torque, 4.4e-6 skew; bounds ~10x the measured
+        // fourth order at 1 us: measured 4.9e-9..6.3e-9 torque, 1.8e-9..9.4e-9 skew, 1.1e-12
+        // cage speed; Rosenbrock at 1e-6: measured 6.1e-6 torque, 3.1e-6..8.2e-5 skew, 1.8e-9
+        // cage speed; bounds ~5-10x the measured. (With the thermal traction of 2026-11-24 the
+        // skew of this case is 5x smaller, its traction slopes steeper: the relative skew
+        // differences grew from 1e-10 and 4.4e-6.)
         assert_agree(
             &format!("Gill/Milne-Hamming, {name}"),
             &gill,
             &reference,
-            [2e-8, 1e-9, 1e-9, 1e-12, 1e-8],
+            [5e-8, 5e-8, 5e-8, 1e-11, 1e-8],
         );
         assert_agree(
             &format!("Rosenbrock-W, {name}"),
             &rosenbrock,
             &reference,
-            [1e-4, 5e-5, 5e-5, 3e-9, 1e-5],
+            [1e-4, 1e-4, 5e-4, 1e-8, 1e-5],
         );
     }
 }

@@ -395,7 +395,10 @@ fn thermal_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: 
     let w = q * c.inv_slice_len;
     let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
     let h_iso = fm::exp(line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w));
-    c.lubricant.raceway_mu(w, p_mean, h_iso, u_e, vs) * q / vs
+    c.lubricant
+        .raceway_mu(w, p_mean, h_iso, u_e, vs, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT))
+        * q
+        / vs
 }
 
 /// [`traction_coef`] with the isothermal Newtonian Eyring law (`traction` = 1).
@@ -458,7 +461,11 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
             let viscous = tr::flange_viscous_traction_with(c.eta0, c.ln_eta0_967, vs, h_iso, ea, eb, ph) / vs;
             asperity + viscous
         }
-        tr::TractionLaw::ThermalEyring => c.lubricant.rib_force(q, vs, u_e, h_iso, ea, eb, ph) / vs,
+        tr::TractionLaw::ThermalEyring => {
+            c.lubricant
+                .rib_force(q, vs, u_e, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT), h_iso, ea, eb, ph)
+                / vs
+        }
     }
 }
 

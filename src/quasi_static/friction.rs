@@ -193,11 +193,13 @@ impl FrictionModel {
             let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
             let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
             let h_iso = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w);
-            let mu = if u_e > 1e-6 {
-                self.lubricant.raceway_mu(w, p_mean, h_iso, u_e, v_s)
+            // the boundary law at the kinematic slide-to-roll ratio: finite at standstill
+            let slide_roll = if weights.entrain[k] > 0.0 {
+                weights.slide[k] / weights.entrain[k]
             } else {
-                tr::boundary_mu(v_s / tr::MIN_BOUNDARY_ENTRAINMENT)
+                0.0
             };
+            let mu = self.lubricant.raceway_mu(w, p_mean, h_iso, u_e, v_s, slide_roll);
             let rolling = if u_e > 0.0 {
                 let p_h = 4.0 / std::f64::consts::PI * p_mean;
                 let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, v_s / u_e);
@@ -300,7 +302,10 @@ impl FrictionModel {
                         let (a, b, p_h) = f.hertz.ellipse(qf);
                         let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
                         match self.traction {
-                            tr::TractionLaw::ThermalEyring => self.lubricant.rib_force(qf, v_s.abs(), u_e, h, a, b, p_h),
+                            tr::TractionLaw::ThermalEyring => {
+                                let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 2.0 };
+                                self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                            }
                             tr::TractionLaw::NewtonianEyring => {
                                 let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
                                 qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)

@@ -55,13 +55,16 @@ impl Lubricant {
     /// Traction coefficient |mu| of a raceway slice (`traction` = 0): the isothermal film
     /// `h_iso` reduced by inlet heating (Gupta et al. 1992), the [W25] regimes by its film
     /// ratio, in full film the thermal Eyring film's stress at the mean pressure `p_mean` over
-    /// it (`traction.rs`). `w` load per length, `u_e` entrainment and `v_s` sliding speed.
+    /// it (`traction.rs`). `w` load per length, `u_e` entrainment and `v_s` sliding speed;
+    /// `boundary_slide_roll` the slide-to-roll ratio of the boundary law (the dynamic model
+    /// floors its entrainment speed, `MIN_BOUNDARY_ENTRAINMENT`; the quasi-static model takes
+    /// the kinematic ratio, finite at standstill).
     #[inline]
-    pub fn raceway_mu(&self, w: f64, p_mean: f64, h_iso: f64, u_e: f64, v_s: f64) -> f64 {
-        if !(w > 0.0) || !(v_s > 0.0) || !(u_e > 0.0) {
+    pub fn raceway_mu(&self, w: f64, p_mean: f64, h_iso: f64, u_e: f64, v_s: f64, boundary_slide_roll: f64) -> f64 {
+        if !(w > 0.0) {
             return 0.0;
         }
-        let slide_roll = v_s / u_e;
+        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 0.0 };
         let heating = thermal_reduction(
             self.inlet_heating * u_e * u_e,
             4.0 / std::f64::consts::PI * p_mean / self.e_prime,
@@ -69,7 +72,7 @@ impl Lubricant {
         );
         let h = heating * h_iso;
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
-        let film = if share < 1.0 {
+        let film = if share < 1.0 && v_s > 0.0 {
             let contact = FilmContact {
                 pressure: p_mean,
                 ln_eta: self.viscosity.ln_eta(p_mean),
@@ -81,21 +84,18 @@ impl Lubricant {
         } else {
             0.0
         };
-        let boundary = if share > 0.0 {
-            boundary_mu(v_s / u_e.max(MIN_BOUNDARY_ENTRAINMENT))
-        } else {
-            0.0
-        };
+        let boundary = if share > 0.0 { boundary_mu(boundary_slide_roll) } else { 0.0 };
         share * boundary + (1.0 - share) * film
     }
 
     /// Friction force |F| (N) of the rib contact (`traction` = 0) at normal load `q`, sliding
     /// speed `v_s`, entrainment speed `u_e`, isothermal central film `h_iso` and Hertz ellipse
     /// (`a` along the entrainment, `b`, peak pressure `p_h`): asperity and film shares from the
-    /// film ratio against the rib roughness (`rib.rs`).
+    /// film ratio against the rib roughness (`rib.rs`); `boundary_slide_roll` as in
+    /// [`Lubricant::raceway_mu`].
     #[allow(clippy::too_many_arguments)]
-    pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        if !(q > 0.0) || !(v_s > 0.0) {
+    pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
+        if !(q > 0.0) {
             return 0.0;
         }
         let slide_roll = if u_e > 0.0 { v_s / u_e } else { 2.0 };
@@ -106,11 +106,11 @@ impl Lubricant {
             0.0
         };
         let boundary = if share > 0.0 {
-            share * q * boundary_mu(v_s / u_e.max(MIN_BOUNDARY_ENTRAINMENT))
+            share * q * boundary_mu(boundary_slide_roll)
         } else {
             0.0
         };
-        let film = if share < 1.0 {
+        let film = if share < 1.0 && v_s > 0.0 {
             (1.0 - share) * rib_film_traction(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
         } else {
             0.0
