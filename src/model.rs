@@ -88,14 +88,14 @@ pub struct Parameters {
 impl Parameters {
     /// The oil's traction data as the traction laws take them.
     pub fn rheology(&self) -> crate::tribology::Rheology {
-        crate::tribology::Rheology {
-            eyring_stress: self.eyring_stress,
-            limiting_shear: self.limiting_shear,
-            shear_modulus: self.shear_modulus,
-            beta: self.oil_beta,
-            conductivity: self.oil_conductivity,
-            eta0: self.eta0,
-        }
+        crate::tribology::Rheology::new(
+            self.eyring_stress,
+            self.limiting_shear,
+            self.shear_modulus,
+            self.oil_beta,
+            self.oil_conductivity,
+            self.eta0,
+        )
     }
 
     /// The lubricated contact laws' data for a bearing of reduced modulus `e_prime`.

@@ -86,6 +86,8 @@ pub(crate) struct Constants {
     /// Full-film traction law and, for law 0, the lubricated contact laws' data.
     traction: tr::TractionLaw,
     lubricant: tr::Lubricant,
+    /// ln(beta eta0 / k): the inlet's thermal loading is exp(this + 2 ln u_e).
+    ln_inlet_heating: f64,
     /// EHL rolling resistance at the raceway slices (lubricated, alpha > 0).
     rolling_resistance: bool,
     alpha: f64,
@@ -227,6 +229,7 @@ impl Constants {
             viscosity: tr::ViscosityTable::new(p.eta0),
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
+            ln_inlet_heating: (p.oil_beta * p.eta0 / p.oil_conductivity).ln(),
             rolling_resistance: p.lubrication != Lubrication::Dry && p.alpha > 0.0,
             alpha: p.alpha,
             sigma: p.roughness,
@@ -361,51 +364,74 @@ pub(crate) fn kinetic_energy(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
     e + 0.5 * c.m_cone * (y[CONE + 3].powi(2) + y[CONE + 4].powi(2) + y[CONE + 5].powi(2))
 }
 
-/// Traction coefficient of a raceway slice: the force on the roller is -coef v_t and the
-/// dissipated power coef |v_t|^2, for normal load `q`, sliding speed `vs` = |v_t| and
-/// entrainment speed `u_e`. Boundary / mixed / full-film law [W25] (full film: Eyring at the
-/// Roelands viscosity of the mean Hertz pressure, capped at 0.08 p), or dry Coulomb.
+/// Traction coefficient of a raceway slice and its EHL rolling couple: the force on the roller
+/// is -coef v_t (dissipating coef |v_t|^2), the couple's magnitude 2 F_R R_eq, for normal load
+/// `q`, sliding speed `vs` = |v_t| and entrainment speed `u_e`. Boundary / mixed / full-film
+/// law [W25] with the full-film law of `traction`, or dry Coulomb (no rolling couple).
 ///
-/// The Hamrock film h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) stays in logarithms: the film
-/// ratio test compares ln h with ln(1.5 sigma), and the Eyring argument eta |v_s| / (h tau_0)
-/// takes exp(ln eta - ln h - ln tau_0) (the viscosity table interpolates ln eta), so the
-/// full-film regime costs two logarithms and one exponential before the asinh, and two
-/// divisions in all.
+/// The Hamrock film h = exp(ln_c + 0.692 ln u_e - 0.166 ln w) stays in logarithms: ln u_e and
+/// ln w serve the film, the inlet heating factor (its thermal loading is beta eta0 u_e^2 / k)
+/// and the rolling couple (exp(ln_roll + 0.648 ln u_e + 0.246 ln w)), ln v_s the Eyring argument
+/// eta |v_s| / (h tau_0) and the heating factor's slide-to-roll ratio.
 #[inline(always)]
-fn traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
-    if q <= 0.0 || vs == 0.0 {
-        return 0.0;
+fn slice_traction(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> (f64, f64) {
+    if q <= 0.0 {
+        return (0.0, 0.0);
     }
     if c.dry {
-        return c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt();
+        return (c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt(), 0.0);
     }
     if u_e < 1e-6 {
         // no rolling, no film: the boundary law at the floored entrainment speed
-        return tr::boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs;
+        let coef = if vs > 0.0 {
+            tr::boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs
+        } else {
+            0.0
+        };
+        return (coef, 0.0);
     }
-    match c.traction {
-        tr::TractionLaw::NewtonianEyring => newtonian_traction_coef(c, line, k, q, vs, u_e),
-        tr::TractionLaw::ThermalEyring => thermal_traction_coef(c, line, k, q, vs, u_e),
-    }
+    let w = q * c.inv_slice_len;
+    let (ln_ue, ln_w) = (fm::ln(u_e), fm::ln(w));
+    let ln_h_iso = line.ln_film[k] + 0.692 * ln_ue - 0.166 * ln_w;
+    let (coef, heating) = match c.traction {
+        tr::TractionLaw::NewtonianEyring => (
+            if vs > 0.0 {
+                newtonian_traction_coef(c, line, k, q, w, ln_h_iso, vs, u_e)
+            } else {
+                0.0
+            },
+            1.0,
+        ),
+        tr::TractionLaw::ThermalEyring => {
+            // mean Hertz pressure w / (2 b); inlet shear heating of the film (Gupta et al. 1992)
+            let p_mean = (w * line.k_pmean[k]).sqrt();
+            let ln_vs = if vs > 0.0 { fm::ln(vs) } else { f64::NEG_INFINITY };
+            let heating = tr::film::thermal_reduction_ln(c.ln_inlet_heating + 2.0 * ln_ue, 4.0 / PI * p_mean / c.e_prime, ln_vs - ln_ue);
+            let coef = if vs > 0.0 {
+                let (h, ln_h) = (heating * fm::exp(ln_h_iso), ln_h_iso + fm::ln(heating));
+                let mu = c
+                    .lubricant
+                    .raceway_mu_film(w, p_mean, h, ln_h, u_e, vs, ln_vs, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT));
+                mu * q / vs
+            } else {
+                0.0
+            };
+            (coef, heating)
+        }
+    };
+    let couple = if c.rolling_resistance {
+        heating * fm::exp(line.ln_roll[k] + 0.648 * ln_ue + 0.246 * ln_w)
+    } else {
+        0.0
+    };
+    (coef, couple)
 }
 
-/// [`traction_coef`] with the thermal Eyring law (`traction` = 0, `Lubricant::raceway_mu`).
+/// [`slice_traction`]'s coefficient with the isothermal Newtonian Eyring law (`traction` = 1);
+/// `ln_h` the isothermal film's logarithm, `vs` > 0.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn thermal_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
-    let w = q * c.inv_slice_len;
-    let p_mean = (w * line.k_pmean[k]).sqrt(); // w / (2 b), b the Hertz half-width
-    let h_iso = fm::exp(line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w));
-    c.lubricant
-        .raceway_mu(w, p_mean, h_iso, u_e, vs, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT))
-        * q
-        / vs
-}
-
-/// [`traction_coef`] with the isothermal Newtonian Eyring law (`traction` = 1).
-#[inline(always)]
-fn newtonian_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> f64 {
-    let w = q * c.inv_slice_len;
-    let ln_h = line.ln_film[k] + 0.692 * fm::ln(u_e) - 0.166 * fm::ln(w);
+fn newtonian_traction_coef(c: &Constants, line: &LineConst, k: usize, q: f64, w: f64, ln_h: f64, vs: f64, u_e: f64) -> f64 {
     // sliding speed with the slide-to-roll ratio floored at 1e-9
     let v_s = vs.max(1e-9 * u_e);
     if c.sigma <= 0.0 || ln_h >= c.ln_full_film {
@@ -596,24 +622,16 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
         let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
         let vs = v_t.norm();
-        let coef = traction_coef(c, line, k, q, vs, u_e);
+        let (coef, couple) = slice_traction(c, line, k, q, vs, u_e);
         let fk = n * q - v_t * coef;
         sum.f += fk;
         sum.m += lever.cross(&fk);
         sum.q += q;
         sum.power += coef * vs * vs + damping_power.max(0.0);
-        if c.rolling_resistance && u_e > 0.0 {
+        if couple > 0.0 {
             // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
             // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
             // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
-            let w = q * c.inv_slice_len;
-            let heating = if c.traction == tr::TractionLaw::ThermalEyring {
-                let p_h = 4.0 / PI * (w * line.k_pmean[k]).sqrt();
-                tr::thermal_reduction(c.lubricant.inlet_heating * u_e * u_e, p_h / c.e_prime, vs / u_e)
-            } else {
-                1.0
-            };
-            let couple = heating * fm::exp(line.ln_roll[k] + 0.648 * fm::ln(u_e) + 0.246 * fm::ln(w));
             let w_roll = w_rel_perp(race, &n, &lever);
             let norm = (w_roll.norm_squared() + line.roll_eps2[k]).sqrt();
             let m_roll = w_roll * (-couple / norm);

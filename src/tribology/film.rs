@@ -76,6 +76,19 @@ pub fn thermal_reduction(load: f64, ph_e: f64, slide_roll: f64) -> f64 {
     (num / den).max(MIN_THERMAL_FACTOR)
 }
 
+/// [`thermal_reduction`] from logarithms: `ln_load` = ln L (-inf: no heating), `ln_slide_roll`
+/// = ln s (-inf: pure rolling); the same value, three exponentials.
+#[inline(always)]
+pub fn thermal_reduction_ln(ln_load: f64, ph_e: f64, ln_slide_roll: f64) -> f64 {
+    if !(ln_load > f64::NEG_INFINITY) {
+        return 1.0;
+    }
+    let s083 = fm::exp(0.83 * ln_slide_roll.min(std::f64::consts::LN_2).max(-700.0));
+    let num = 1.0 - 13.2 * ph_e * fm::exp(0.42 * ln_load);
+    let den = 1.0 + 0.213 * (1.0 + 2.23 * s083) * fm::exp(0.64 * ln_load);
+    (num / den).max(MIN_THERMAL_FACTOR)
+}
+
 /// Thermal loading parameter L = beta eta0 u_e^2 / k of the inlet.
 #[inline]
 pub fn thermal_load(beta: f64, eta0: f64, conductivity: f64, u_e: f64) -> f64 {
@@ -135,5 +148,12 @@ mod tests {
         }
         // the floor beyond the regression's range
         assert_eq!(thermal_reduction(1e6, 1e-2, 1.0), MIN_THERMAL_FACTOR);
+        // the logarithmic form gives the same value
+        for (l, s) in [(2.0, 0.1), (0.03, 0.0), (40.0, 1.7), (5.0, 3.0)] {
+            let a = thermal_reduction(l, 3e-3, s);
+            let b = thermal_reduction_ln(f64::ln(l), 3e-3, f64::ln(s));
+            assert!((a - b).abs() < 1e-13, "{l} {s}: {a} vs {b}");
+        }
+        assert_eq!(thermal_reduction_ln(f64::NEG_INFINITY, 3e-3, 0.0), 1.0);
     }
 }

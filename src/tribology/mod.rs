@@ -71,6 +71,16 @@ impl Lubricant {
             slide_roll,
         );
         let h = heating * h_iso;
+        let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
+        let ln_vs = if v_s > 0.0 { fm::ln(v_s) } else { f64::NEG_INFINITY };
+        self.raceway_mu_film(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll)
+    }
+
+    /// [`Lubricant::raceway_mu`] with the film `h` already reduced by inlet heating, its
+    /// logarithm `ln_h` and ln |v_s| `ln_vs` known (the dynamic model's slice loop).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn raceway_mu_film(&self, w: f64, p_mean: f64, h: f64, ln_h: f64, u_e: f64, v_s: f64, ln_vs: f64, boundary_slide_roll: f64) -> f64 {
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
         let film = if share < 1.0 && v_s > 0.0 {
             let contact = FilmContact {
@@ -80,7 +90,7 @@ impl Lubricant {
                 half_width: 0.5 * w / p_mean,
                 entrainment: u_e,
             };
-            traction::thermal_eyring_stress(&self.rheology, &contact, v_s) / p_mean
+            traction::thermal_eyring_stress_ln(&self.rheology, &contact, v_s, ln_vs, ln_h) / p_mean
         } else {
             0.0
         };

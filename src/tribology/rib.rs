@@ -133,14 +133,7 @@ mod tests {
     #[test]
     fn rib_film_is_newtonian_at_low_shear_and_limited_at_high() {
         let visc = ViscosityTable::for_oil(0.033, 1.28e-8, super::super::Piezoviscosity::Barus);
-        let r = Rheology {
-            eyring_stress: 5e6,
-            limiting_shear: 0.08,
-            shear_modulus: 1e9,
-            beta: 0.03,
-            conductivity: 0.13,
-            eta0: 0.033,
-        };
+        let r = Rheology::new(5e6, 0.08, 1e9, 0.03, 0.13, 0.033);
         let (a, b, ph, h, ue) = (1.2e-3, 1.0e-3, 4.5e8, 2e-6, 15.0);
         let v = 1e-6;
         let f = rib_film_traction(&r, &visc, v, h, ue, a, b, ph);
@@ -158,7 +151,7 @@ mod tests {
             * a
             * b;
         assert!((f - newton).abs() < 2e-3 * newton, "{f} vs {newton}");
-        let cold = Rheology { beta: 0.0, ..r };
+        let cold = Rheology::new(5e6, 0.08, 1e9, 0.0, 0.13, 0.033);
         let q = 2.0 / 3.0 * PI * a * b * ph;
         let f = rib_film_traction(
             &cold,

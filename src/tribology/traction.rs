@@ -9,21 +9,21 @@
 //!   regime tau grows with ln(eta), i.e. linearly with the pressure, so the stress at the mean
 //!   pressure is the mean stress over the Hertz zone.
 //! - shear heating: the film's heat tau v_s per unit area leaves through both surfaces.
-//!   Across the film the temperature is the parabola of steady conduction, its mid-plane
-//!   rise dT_m = tau v_s h / (8 k_oil); each surface's mean flash temperature under a moving
-//!   band source of half-width b is dT_s = 0.752 (tau v_s / 2) b / (K_s sqrt(Pe)),
-//!   Pe = u_e b / (2 kappa_s) (Carslaw & Jaeger 1959 / Jaeger 1942 fast-source limit:
-//!   a surface point is heated for 2 b / u_e). The viscosity falls as exp(-beta_p dT), with
-//!   the oil's temperature-viscosity coefficient `oil.beta` raised by pressure as in Roelands'
-//!   viscosity-temperature-pressure equation (Roelands 1966: d ln eta / dT = -S0 (ln eta +
-//!   9.67) / (T - 138), so beta_p = beta (ln eta(p) + 9.67) / (ln eta0 + 9.67); about 2 beta
-//!   at 0.55 GPa for the [W25] oil),
-//!   and since the shear stress is uniform across the film, the sliding speed is the
-//!   integral of the local shear rate: v_s = (tau_0 h / eta) sinh(tau / tau_0) exp(beta dT_s)
-//!   M(beta dT_m), M(a) = integral over the film of exp(a 4 z (1 - z)). That equation is
-//!   solved for tau (Newton, monotone). This is the thermal Eyring film of Johnson &
-//!   Greenwood (Wear 61 (1980) 353) with the surface temperature of the moving heat source;
-//!   it gives the falling branch of measured traction curves at large slide-to-roll ratios.
+//!   Across the film the temperature is the parabola of steady conduction, its mean rise
+//!   tau v_s h / (12 k_oil) (two thirds of the mid-plane rise); each surface's mean flash
+//!   temperature under a moving band source of half-width b is
+//!   dT_s = 0.752 (tau v_s / 2) b / (K_s sqrt(Pe)), Pe = u_e b / (2 kappa_s) (Carslaw & Jaeger
+//!   1959 / Jaeger 1942 fast-source limit: a surface point is heated for 2 b / u_e; Pe + 1
+//!   under the root keeps it finite at rest). The film flows at the viscosity of its mean
+//!   temperature (the effective-temperature form of Crook 1961 and Olver & Spikes 1998),
+//!   eta exp(-beta_p dT), with the oil's temperature-viscosity coefficient `oil.beta` raised by
+//!   pressure as in Roelands' viscosity-temperature-pressure equation (Roelands 1966:
+//!   d ln eta / dT = -S0 (ln eta + 9.67) / (T - 138), so beta_p = beta (ln eta(p) + 9.67) /
+//!   (ln eta0 + 9.67); about 2 beta at 0.55 GPa for the [W25] oil). Since dT is proportional to
+//!   tau, the stress solves tau = tau_0 asinh(X exp(-B tau / tau_0)), X = eta gamma_dot / tau_0,
+//!   B = beta_p tau_0 dT / tau (Newton, monotone; Johnson & Greenwood, Wear 61 (1980) 353, solve
+//!   the same thermal Eyring film across its thickness). This is the falling branch of measured
+//!   traction curves at large slide-to-roll ratios.
 //! - elastic entry: the oil enters the contact unsheared and needs a relaxation time
 //!   lambda = eta_eff / G to reach the viscous stress (Maxwell; Johnson & Tevaarwerk 1977);
 //!   the mean stress over the transit time T = 2 b / u_e is
@@ -71,6 +71,9 @@ pub struct Rheology {
     pub conductivity: f64,
     /// Viscosity at ambient pressure and the inlet temperature (Pa s).
     pub eta0: f64,
+    /// ln of the Eyring stress, and beta / (ln eta0 + 9.67) (Roelands' coupling), precomputed.
+    pub ln_eyring_stress: f64,
+    pub beta_per_roelands: f64,
 }
 
 impl Rheology {
@@ -78,8 +81,21 @@ impl Rheology {
     /// coupling, see the module's doc); never below the ambient value.
     #[inline]
     pub fn beta_at(&self, ln_eta: f64) -> f64 {
-        let ambient = (fm::ln(self.eta0) + 9.67).max(1.0);
-        self.beta * ((ln_eta + 9.67) / ambient).max(1.0)
+        (self.beta_per_roelands * (ln_eta + 9.67)).max(self.beta)
+    }
+
+    /// The oil's traction data with the derived constants filled in.
+    pub fn new(eyring_stress: f64, limiting_shear: f64, shear_modulus: f64, beta: f64, conductivity: f64, eta0: f64) -> Rheology {
+        Rheology {
+            eyring_stress,
+            limiting_shear,
+            shear_modulus,
+            beta,
+            conductivity,
+            eta0,
+            ln_eyring_stress: eyring_stress.ln(),
+            beta_per_roelands: beta / (eta0.ln() + 9.67).max(1.0),
+        }
     }
 }
 
@@ -102,30 +118,38 @@ pub struct FilmContact {
 #[inline]
 pub fn thermal_eyring_stress(r: &Rheology, c: &FilmContact, v_s: f64) -> f64 {
     let v_s = v_s.abs();
-    let h = c.film.max(1e-9);
     if !(v_s > 0.0) || !(c.pressure > 0.0) {
         return 0.0;
     }
+    thermal_eyring_stress_ln(r, c, v_s, fm::ln(v_s), fm::ln(c.film.max(1e-9)))
+}
+
+/// [`thermal_eyring_stress`] with ln |v_s| and ln h already known (the right-hand side keeps
+/// the film in logarithms); `v_s` > 0, `c.film` >= 1e-9 m.
+#[inline(always)]
+pub fn thermal_eyring_stress_ln(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: f64, ln_h: f64) -> f64 {
     let tau0 = r.eyring_stress;
+    let h = c.film.max(1e-9);
     // X = eta gamma_dot / tau_0
-    let ln_x = c.ln_eta + fm::ln(v_s / (h * tau0));
-    // heating per unit stress, scaled by beta tau_0: surface (uniform) and film mid-plane
+    let ln_x = c.ln_eta + ln_vs - ln_h.max(LN_MIN_FILM) - r.ln_eyring_stress;
+    // temperature rise per unit stress (surface flash + film mean), times beta_p tau_0
     let b = c.half_width.max(0.0);
-    let peclet = c.entrainment.abs() * b / (2.0 * STEEL_DIFFUSIVITY);
-    let beta = r.beta_at(c.ln_eta);
-    let b_s = beta * tau0 * 0.752 * 0.5 * v_s * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt());
-    let b_m = beta * tau0 * v_s * h / (8.0 * r.conductivity);
-    let y = solve_thermal_eyring(ln_x, b_s, b_m);
+    let peclet = c.entrainment.abs() * b * (0.5 / STEEL_DIFFUSIVITY);
+    let heat = 0.376 * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt()) + h / (12.0 * r.conductivity);
+    let heating = r.beta_at(c.ln_eta) * tau0 * v_s * heat;
+    let y = solve_thermal_eyring(ln_x, heating);
     let mut tau = tau0 * y;
     // elastic entry (Maxwell): mean over the transit time T = 2 b / u_e
     if r.shear_modulus > 0.0 && c.entrainment.abs() > 0.0 && tau > 0.0 {
-        let gamma_dot = v_s / h;
-        let lambda = tau / (gamma_dot * r.shear_modulus);
-        let ratio = 2.0 * b / (c.entrainment.abs() * lambda);
+        // T / lambda = 2 b G gamma_dot / (u_e tau)
+        let ratio = 2.0 * b * r.shear_modulus * v_s / (c.entrainment.abs() * tau * h);
         tau *= maxwell_mean(ratio);
     }
     limit(tau, r.limiting_shear * c.pressure)
 }
+
+/// ln(1e-9): the film thickness floor of the Eyring law.
+pub const LN_MIN_FILM: f64 = -20.723_265_836_946_41;
 
 /// Mean over a transit of `ratio` relaxation times of the Maxwell stress rise 1 - exp(-t):
 /// 1 - (1 - exp(-ratio)) / ratio.
@@ -150,41 +174,62 @@ pub fn limit(tau: f64, tau_l: f64) -> f64 {
     tau * tau_l / (t2 * t2 + l2 * l2).sqrt().sqrt()
 }
 
-/// y = tau / tau_0 solving y = asinh(X exp(-b_s y) / M(b_m y)), ln X = `ln_x` (Newton from
-/// the isothermal value, which bounds it from above; the residual is monotone).
+/// y = tau / tau_0 solving y = asinh(X exp(-B y)), ln X = `ln_x`, B = `heating` >= 0:
+/// Newton from the two regimes' closed forms (X e^(-B y) small: y = X / (1 + B X); large:
+/// y = ln(2X) / (1 + B)). Newton converges quadratically here (the residual is monotone with
+/// slope >= 1): once a step is below 1e-9 y, the stepped value is exact to rounding; a
+/// bracket guards the first steps.
 #[inline]
-fn solve_thermal_eyring(ln_x: f64, b_s: f64, b_m: f64) -> f64 {
-    let y_iso = asinh_exp(ln_x);
-    if b_s <= 0.0 && b_m <= 0.0 {
-        return y_iso;
+fn solve_thermal_eyring(ln_x: f64, heating: f64) -> f64 {
+    if !(heating > 0.0) {
+        return asinh_exp(ln_x);
     }
-    let mut y = y_iso;
-    let mut lo = 0.0;
-    let mut hi = y_iso;
-    for _ in 0..30 {
-        let (ln_m, dln_m) = ln_film_mean(b_m * y);
-        let g = ln_x - b_s * y - ln_m;
-        let dg = -b_s - b_m * dln_m;
-        let z = fm::exp(g.min(600.0));
-        let f = y - asinh_exp(g);
-        // d asinh(e^g)/dg = e^g / sqrt(1 + e^2g)
-        let slope = 1.0 - z / (1.0 + z * z).sqrt() * dg;
+    let mut y = if ln_x > 0.0 {
+        (ln_x + std::f64::consts::LN_2) / (1.0 + heating)
+    } else {
+        let x = fm::exp(ln_x);
+        x / (1.0 + heating * x)
+    };
+    let (mut lo, mut hi) = (0.0, f64::INFINITY);
+    for _ in 0..60 {
+        let g = ln_x - heating * y;
+        let (asinh, dz) = asinh_exp_and_slope(g);
+        let f = y - asinh;
         if f > 0.0 {
             hi = y;
         } else {
             lo = y;
         }
-        let mut next = y - f / slope;
-        if !(next > lo && next < hi) {
-            next = 0.5 * (lo + hi);
+        // d asinh(e^g)/dy = -B e^g / sqrt(1 + e^2g)
+        let step = f / (1.0 + heating * dz);
+        if step.abs() <= 1e-9 * y.max(1e-300) {
+            return y - step;
         }
-        let done = (next - y).abs() <= 4.0 * f64::EPSILON * y.max(1e-300);
-        y = next;
-        if done {
-            break;
-        }
+        let next = y - step;
+        y = if next > lo && next < hi {
+            next
+        } else {
+            0.5 * (lo + hi.min(2.0 * y.max(lo)))
+        };
     }
     y
+}
+
+/// asinh(e^g) and its derivative in g, e^g / sqrt(1 + e^2g), with one exponential.
+#[inline(always)]
+fn asinh_exp_and_slope(g: f64) -> (f64, f64) {
+    if g > 20.0 {
+        return (g + std::f64::consts::LN_2, 1.0);
+    }
+    let x = fm::exp(g);
+    let root = (x * x + 1.0).sqrt();
+    let asinh = if x < 0.1 {
+        let x2 = x * x;
+        x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))))
+    } else {
+        fm::ln(x + root)
+    };
+    (asinh, x / root)
 }
 
 /// asinh(exp(g)) without overflow: ln(e^g + sqrt(e^2g + 1)).
@@ -202,41 +247,6 @@ fn asinh_exp(g: f64) -> f64 {
             fm::ln(x + (x * x + 1.0).sqrt())
         }
     }
-}
-
-/// ln M(a) and its derivative, M(a) = integral over z in [0, 1] of exp(4 a z (1 - z))
-/// = sum over n of (2a)^n / (2n + 1)!! = e^a sqrt(pi / a) erf(sqrt a) / 2.
-#[inline]
-fn ln_film_mean(a: f64) -> (f64, f64) {
-    if a <= 0.0 {
-        return (0.0, 2.0 / 3.0);
-    }
-    if a < 2.0 {
-        // series: terms t_n = (2a)^n / (2n+1)!!, 24 terms: the remainder is below 1e-16
-        let mut t = 1.0;
-        let mut m = 1.0;
-        let mut dm = 0.0;
-        for n in 1..24 {
-            t *= 2.0 * a / (2 * n + 1) as f64;
-            m += t;
-            dm += n as f64 * t / a;
-        }
-        (fm::ln(m), dm / m)
-    } else {
-        let r = a.sqrt();
-        let e = erf(r);
-        let ln_m = a + 0.5 * (std::f64::consts::PI / a).ln() + e.ln() - std::f64::consts::LN_2;
-        let d = 1.0 + (-a).exp() / ((std::f64::consts::PI * a).sqrt() * e) - 0.5 / a;
-        (ln_m, d)
-    }
-}
-
-/// Error function for x >= 0 (Abramowitz & Stegun 7.1.26, absolute error below 1.5e-7; used
-/// only where erf(x) > 0.95, i.e. relative error below 2e-7).
-fn erf(x: f64) -> f64 {
-    let t = 1.0 / (1.0 + 0.327_591_1 * x);
-    let poly = t * (0.254_829_592 + t * (-0.284_496_736 + t * (1.421_413_741 + t * (-1.453_152_027 + t * 1.061_405_429))));
-    1.0 - poly * (-x * x).exp()
 }
 
 /// Newtonian Eyring traction coefficient (law 1, signed like `v_s`): mean shear stress of an
@@ -260,14 +270,7 @@ mod tests {
     /// The presets' oil at the [W25] raceway (0.55 GPa mean, Barus viscosity, 1.3 um film,
     /// b = 0.14 mm, u_e = 16 m/s).
     fn w25_slice(eta_law: f64) -> (Rheology, FilmContact) {
-        let r = Rheology {
-            eyring_stress: 5e6,
-            limiting_shear: 0.08,
-            shear_modulus: 1e9,
-            beta: 0.03,
-            conductivity: 0.13,
-            eta0: 0.033,
-        };
+        let r = Rheology::new(5e6, 0.08, 1e9, 0.03, 0.13, 0.033);
         let c = FilmContact {
             pressure: 5.5e8,
             ln_eta: eta_law.ln(),
@@ -311,8 +314,8 @@ mod tests {
     /// limiting shear stress Lambda p; the smooth minimum never exceeds it.
     #[test]
     fn plateau_is_the_limiting_shear_stress() {
-        let (mut r, c) = w25_slice(1e12);
-        r.beta = 0.0;
+        let (r, c) = w25_slice(1e12);
+        let r = Rheology::new(r.eyring_stress, r.limiting_shear, r.shear_modulus, 0.0, r.conductivity, r.eta0);
         let tau = thermal_eyring_stress(&r, &c, 50.0);
         let tau_l = r.limiting_shear * c.pressure;
         assert!(tau <= tau_l && tau > 0.99 * tau_l, "{tau} vs {tau_l}");
@@ -325,7 +328,7 @@ mod tests {
     fn heating_lowers_the_stress_and_makes_a_falling_branch() {
         let eta = 0.033 * (1.28e-8_f64 * 5.5e8).exp();
         let (r, c) = w25_slice(eta);
-        let iso = Rheology { beta: 0.0, ..r };
+        let iso = Rheology::new(r.eyring_stress, r.limiting_shear, r.shear_modulus, 0.0, r.conductivity, r.eta0);
         let mut peak: f64 = 0.0;
         let mut last = 0.0;
         let mut fell = false;
@@ -346,29 +349,18 @@ mod tests {
         assert!(peak > 0.01 && peak < 0.08, "peak mu {peak}");
     }
 
-    /// The thermal solution satisfies its own equation: v_s = (tau_0 h / eta) sinh(tau/tau_0)
-    /// exp(beta dT_s) M(beta dT_m), M checked against quadrature.
+    /// The thermal solution satisfies its own equation y = asinh(X exp(-B y)) to machine
+    /// precision in both regimes, and is the isothermal Eyring stress without heating.
     #[test]
     fn thermal_solution_satisfies_the_film_equation() {
-        for a in [1e-3, 0.5, 1.9, 2.1, 7.0, 40.0] {
-            let n = 20000;
-            let quad: f64 = (0..n)
-                .map(|i| {
-                    let z = (i as f64 + 0.5) / n as f64;
-                    (4.0 * a * z * (1.0 - z)).exp()
-                })
-                .sum::<f64>()
-                / n as f64;
-            let (ln_m, d) = ln_film_mean(a);
-            assert!((ln_m - quad.ln()).abs() < 1e-6, "a={a}: {} vs {}", ln_m, quad.ln());
-            let (ln_m2, _) = ln_film_mean(a * (1.0 + 1e-6));
-            assert!(((ln_m2 - ln_m) / (a * 1e-6) - d).abs() < 1e-4 * d.max(1.0), "a={a}");
+        for ln_x in [-25.0, -3.0, 0.0, 0.7, 3.0, 12.0, 40.0] {
+            for heating in [0.0, 1e-6, 0.05, 0.7, 6.0, 80.0] {
+                let y = solve_thermal_eyring(ln_x, heating);
+                let rhs = asinh_exp(ln_x - heating * y);
+                assert!((y - rhs).abs() <= 1e-13 * y.max(1e-300), "ln X {ln_x}, B {heating}: {y} vs {rhs}");
+            }
+            assert_eq!(solve_thermal_eyring(ln_x, 0.0), asinh_exp(ln_x));
         }
-        let (ln_x, b_s, b_m) = (3.0, 0.2, 0.7);
-        let y = solve_thermal_eyring(ln_x, b_s, b_m);
-        let (ln_m, _) = ln_film_mean(b_m * y);
-        let rhs = asinh_exp(ln_x - b_s * y - ln_m);
-        assert!((y - rhs).abs() < 1e-12 * y, "{y} vs {rhs}");
     }
 
     #[test]

@@ -66,8 +66,9 @@ pub struct ViscosityTable {
     z: f64,
     /// Barus coefficient; `None` for Roelands.
     barus: Option<f64>,
-    /// ln eta at k STEP (fixed length: the interpolation needs no bounds checks).
-    ln_eta: Box<[f64; ViscosityTable::N]>,
+    /// ln eta at k STEP (fixed length: the interpolation needs no bounds checks); empty
+    /// (length 0) for Barus, which needs no table.
+    ln_eta: Box<[f64]>,
 }
 
 impl ViscosityTable {
@@ -83,11 +84,14 @@ impl ViscosityTable {
     pub fn for_oil(eta0: f64, alpha: f64, law: Piezoviscosity) -> ViscosityTable {
         match law {
             Piezoviscosity::Roelands => Self::roelands(eta0, roelands_index(eta0, alpha)),
-            Piezoviscosity::Barus => {
-                let mut t = Self::roelands(eta0, 0.4);
-                t.barus = Some(alpha);
-                t
-            }
+            Piezoviscosity::Barus => ViscosityTable {
+                eta0,
+                ln_eta0: eta0.ln(),
+                ln_eta0_967: eta0.ln() + 9.67,
+                z: 0.4,
+                barus: Some(alpha),
+                ln_eta: Box::new([]),
+            },
         }
     }
 
@@ -96,7 +100,7 @@ impl ViscosityTable {
         let ln_eta: Vec<f64> = (0..Self::N)
             .map(|k| roelands_viscosity_z(eta0, ln_eta0_967, z, k as f64 * Self::STEP).ln())
             .collect();
-        let ln_eta = ln_eta.into_boxed_slice().try_into().expect("table length N");
+        let ln_eta = ln_eta.into_boxed_slice();
         ViscosityTable {
             eta0,
             ln_eta0: eta0.ln(),
@@ -138,7 +142,8 @@ impl ViscosityTable {
         // SAFETY: 0 <= u < N - 1 (p.max(0.0) is never NaN), so the truncation is in range
         let k: usize = unsafe { u.to_int_unchecked() };
         let f = u - k as f64;
-        let (a, b) = (self.ln_eta[k], self.ln_eta[(k + 1).min(Self::N - 1)]);
+        let table: &[f64; Self::N] = self.ln_eta[..].try_into().expect("Roelands table of length N");
+        let (a, b) = (table[k], table[(k + 1).min(Self::N - 1)]);
         a + f * (b - a)
     }
 
