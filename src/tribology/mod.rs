@@ -252,6 +252,53 @@ mod tests {
         assert_eq!(traction_mu(2.0, s, fl), fl);
     }
 
+    /// The [W25] rib contact (Q_f 1.2 kN on the sphere, 5.2 m/s sliding at 14.7 m/s
+    /// entrainment, 3 um isothermal film) as the rib roughness grows: full film (the film
+    /// force alone) while the film ratio is at least 1.5, the boundary law on the whole load
+    /// below 0.01, the asperity share w = ((lambda - 1.5)/(0.01 - 1.5))^6 between; continuous
+    /// at both transitions, and the friction never falls as the film ratio falls.
+    #[test]
+    fn rib_regimes_follow_the_film_ratio() {
+        let oil = |rib_sigma: f64| Lubricant {
+            rheology: Rheology::new(5e6, 0.08, 1e9, 0.03, 0.13, 0.033),
+            viscosity: ViscosityTable::for_oil(0.033, 1.28e-8, Piezoviscosity::Barus),
+            inlet_heating: 0.03 * 0.033 / 0.13,
+            sigma: 2e-7,
+            rib_sigma,
+            e_prime: 2.181e11,
+        };
+        let (q, vs, ue, h_iso, a, b, ph) = (1209.0, 5.2, 14.7, 3.06e-6, 1.23e-3, 1.04e-3, 4.5e8);
+        let s = vs / ue;
+        let heat = thermal_reduction(0.03 * 0.033 / 0.13 * ue * ue, ph / 2.181e11, s);
+        let h = heat * h_iso;
+        let film = rib_film_traction(&oil(0.0).rheology, &oil(0.0).viscosity, vs, h, ue, a, b, ph);
+        let force = |lambda: f64| oil(h / lambda).rib_force(q, vs, ue, s, h_iso, a, b, ph);
+        // full film
+        assert!((force(1.5) - film).abs() < 1e-12 * film && (force(6.0) - film).abs() < 1e-12 * film);
+        assert_eq!(oil(0.0).rib_force(q, vs, ue, s, h_iso, a, b, ph), film);
+        // boundary
+        let boundary = q * boundary_mu(s);
+        assert!((force(0.009) - boundary).abs() < 1e-12 * boundary);
+        assert!(
+            (force(0.01 * (1.0 + 1e-9)) - boundary).abs() < 1e-6 * boundary,
+            "continuous at 0.01"
+        );
+        // mixed, by hand at lambda = 0.5
+        let w = ((0.5 - 1.5) / (0.01 - 1.5_f64)).powi(6);
+        let hand = w * boundary + (1.0 - w) * film;
+        assert!((force(0.5) - hand).abs() < 1e-12 * hand);
+        // the full-film rib of this case runs at mu ~ 0.005-0.01 (SKF's full-film sliding
+        // coefficient of tapered roller bearings: 0.002); boundary 0.1
+        assert!(film / q > 0.002 && film / q < 0.02, "film mu {}", film / q);
+        let mut last = 0.0;
+        for k in 0..200 {
+            let lambda = 3.0 * 0.97_f64.powi(k);
+            let f = force(lambda);
+            assert!(f >= last * (1.0 - 1e-12), "friction fell at lambda {lambda}");
+            last = f;
+        }
+    }
+
     #[test]
     fn eyring_series_and_logarithm_meet() {
         // the asinh series below x = 0.1 and the logarithm above agree at the switch
