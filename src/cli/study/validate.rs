@@ -177,9 +177,47 @@ fn ratio_text(r: Option<f64>) -> String {
     r.map(|r| format!("{r:.3}")).unwrap_or_else(|| "—".into())
 }
 
+/// A number with four significant digits (for values that differ in the fourth).
+fn num4(v: f64) -> String {
+    let a = v.abs();
+    if !v.is_finite() {
+        "—".into()
+    } else if v.fract() == 0.0 && a < 1e6 {
+        format!("{v:.0}")
+    } else if a >= 1e5 || a < 1e-2 {
+        format!("{v:.3e}")
+    } else {
+        let d = (3 - a.log10().floor() as i32).max(0) as usize;
+        format!("{v:.d$}")
+    }
+}
+
 /// "a → b → c" of a few values.
 fn chain(v: &[f64]) -> String {
-    v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(" → ")
+    v.iter().map(|x| num4(*x)).collect::<Vec<_>>().join(" → ")
+}
+
+/// "a → b (monotone)" of a long sweep: first and last value, and whether every step goes the
+/// same way.
+fn ends(v: &[f64]) -> String {
+    let (a, b) = (v[0], v[v.len() - 1]);
+    let monotone = if b >= a { non_decreasing(v) } else { non_increasing(v) };
+    format!("{} → {}{}", num4(a), num4(b), if monotone { "" } else { " (not monotone)" })
+}
+
+/// Equal within a millionth of the largest magnitude (solver noise).
+fn tol(v: &[f64]) -> f64 {
+    1e-6 * v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+fn non_decreasing(v: &[f64]) -> bool {
+    let e = tol(v);
+    v.windows(2).all(|w| w[1] >= w[0] - e)
+}
+
+fn non_increasing(v: &[f64]) -> bool {
+    let e = tol(v);
+    v.windows(2).all(|w| w[1] <= w[0] + e)
 }
 
 fn increasing(v: &[f64]) -> bool {
@@ -494,6 +532,53 @@ fn w25_section(runs: &W25Runs, plan: &Plan, ledger: &mut Ledger) -> String {
     md += &w25_stated_trends(runs, ledger);
     md += &w25_every_run(runs);
     md += &w25_energy_balance(runs);
+    let balance: Vec<f64> = runs
+        .cases
+        .values()
+        .flatten()
+        .flatten()
+        .map(|r| r.torque * r.speed_rpm * RPM / r.power)
+        .collect();
+    if !balance.is_empty() {
+        ledger.fact(
+            "[W25]",
+            format!(
+                "energy balance: torque × speed / power loss {} … {} over the {} runs (time averages)",
+                ratio_text(Some(balance.iter().cloned().fold(f64::INFINITY, f64::min))),
+                ratio_text(Some(balance.iter().cloned().fold(0.0, f64::max))),
+                balance.len()
+            ),
+        );
+    }
+    for (angle, symbol) in [("tilt", 'θ'), ("skew", 'ϕ')] {
+        let spans: Vec<String> = LUBRICATED
+            .iter()
+            .zip(TRACTIONS)
+            .filter_map(|(c, t)| {
+                let q: Vec<f64> = ledger
+                    .ratios
+                    .iter()
+                    .filter(|r| r.source == "[W25]" && r.what.contains(symbol))
+                    .flat_map(|r| r.ratios.iter().filter(|(k, _)| k == c).map(|(_, q)| *q))
+                    .collect();
+                (!q.is_empty()).then(|| {
+                    let (lo, hi) = (
+                        q.iter().cloned().fold(f64::INFINITY, f64::min),
+                        q.iter().cloned().fold(0.0, f64::max),
+                    );
+                    format!(
+                        "{} … {} (traction {t}, {} numbers)",
+                        ratio_text(Some(lo)),
+                        ratio_text(Some(hi)),
+                        q.len()
+                    )
+                })
+            })
+            .collect();
+        if !spans.is_empty() {
+            ledger.fact("[W25]", format!("{angle} angles, product/study: {}", spans.join("; ")));
+        }
+    }
     md
 }
 
@@ -1146,24 +1231,23 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     let mut k = Checks::new("[D19]", DRY);
     let lower = |xs: &[f64], a: &[Outputs], b: &[Outputs], unit: &str| -> (bool, String) {
         let n = a.iter().zip(b).filter(|(f, d)| f.friction_torque < d.friction_torque).count();
-        let higher: Vec<String> = xs
+        let higher: Vec<(f64, f64, f64)> = xs
             .iter()
             .zip(a.iter().zip(b))
             .filter(|(_, (f, d))| f.friction_torque >= d.friction_torque)
-            .map(|(x, (f, d))| format!("{}{unit}: {} vs {}", num(*x), num(f.friction_torque), num(d.friction_torque)))
+            .map(|(x, (f, d))| (*x, f.friction_torque, d.friction_torque))
             .collect();
-        (
-            n == xs.len(),
-            format!(
-                "lower at {n} of {} points{}",
-                xs.len(),
-                if higher.is_empty() {
-                    String::new()
-                } else {
-                    format!("; not at μ/pocket {}", higher.join(", "))
-                }
+        let detail = match higher.last() {
+            None => String::new(),
+            Some((x, f, d)) => format!(
+                "; not at {}{unit} (at {}{unit}: {} against {} N m)",
+                higher.iter().map(|h| num(h.0)).collect::<Vec<_>>().join(", "),
+                num(*x),
+                num(*f),
+                num(*d)
             ),
-        )
+        };
+        (n == xs.len(), format!("force preload lower at {n} of {} points{detail}", xs.len()))
     };
     k.row(
         ledger,
@@ -1217,8 +1301,8 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
         vec![Some({
             let s: Vec<f64> = d.by_pocket[0].iter().map(|o| o.skew_max * DEG).collect();
             let q: Vec<f64> = d.by_pocket[0].iter().map(|o| o.qc_max).collect();
-            let ok = s.windows(2).all(|w| w[1] >= w[0]) && q.windows(2).all(|w| w[1] <= w[0]);
-            (ok, format!("skew.max {} deg; Qc.max {} N", chain(&s), chain(&q)))
+            let ok = non_decreasing(&s) && non_increasing(&q);
+            (ok, format!("skew.max {} deg; Qc.max {} N", ends(&s), ends(&q)))
         })],
     );
     k.row(
@@ -1616,6 +1700,22 @@ fn l22_torque_section(l: &L22Runs, ledger: &mut Ledger) -> String {
         }),
     );
     md += &k.text();
+    for t in 0..TRACTIONS.len() {
+        let o = &l.by_slip[t][1];
+        ledger.fact(
+            "[L22]",
+            format!(
+                "traction {}: at 10 kN, 1000 rpm, slip 0.01 % (ideal rollers) the cone feels {} N mm and the cup {} N mm \
+                 (`frictionTorque.cone` / `.cup`), {} and {} times the energy-consistent `frictionTorque` ({} N mm)",
+                TRACTIONS[t],
+                num(o.friction_torque_cone * 1e3),
+                num(o.friction_torque_cup * 1e3),
+                num(o.friction_torque_cone / o.friction_torque),
+                num(o.friction_torque_cup / o.friction_torque),
+                num(o.friction_torque * 1e3)
+            ),
+        );
+    }
     md
 }
 
@@ -1734,12 +1834,13 @@ impl Y22Runs {
 /// that way (ties allowed).
 fn direction(v: &[f64]) -> (&'static str, bool) {
     let (a, b) = (v[0], v[v.len() - 1]);
-    if b > a {
-        ("rises", v.windows(2).all(|w| w[1] >= w[0]))
-    } else if b < a {
-        ("falls", v.windows(2).all(|w| w[1] <= w[0]))
+    let e = tol(v);
+    if b > a + e {
+        ("rises", non_decreasing(v))
+    } else if b < a - e {
+        ("falls", non_increasing(v))
     } else {
-        ("stays", v.windows(2).all(|w| w[1] == w[0]))
+        ("stays", v.windows(2).all(|w| (w[1] - w[0]).abs() <= e))
     }
 }
 
@@ -1975,6 +2076,21 @@ fn skf_table(ledger: &mut Ledger, title: &str, x_label: &str, points: &[SkfPoint
             });
         }
         rows.push(r);
+    }
+    let spans: Vec<String> = (0..LUBRICATED.len())
+        .filter_map(|t| {
+            let q: Vec<f64> = points.iter().filter_map(|p| p.product[t].map(|v| v.0 / p.skf.total)).collect();
+            (!q.is_empty()).then(|| {
+                let (lo, hi) = (
+                    q.iter().cloned().fold(f64::INFINITY, f64::min),
+                    q.iter().cloned().fold(0.0, f64::max),
+                );
+                format!("{} … {} (traction {})", ratio_text(Some(lo)), ratio_text(Some(hi)), TRACTIONS[t])
+            })
+        })
+        .collect();
+    if !spans.is_empty() {
+        ledger.fact("SKF", format!("{title} ({fidelity}): T/SKF {}", spans.join(", ")));
     }
     format!(
         "### {title} ({fidelity})\n\n{}\n",
@@ -2228,7 +2344,12 @@ fn differences_section(ledger: &Ledger) -> String {
             .iter()
             .filter(|k| k.holds.iter().any(|(_, h)| !h))
             .map(|k| {
-                let cols: Vec<&str> = k.holds.iter().filter(|(_, h)| !h).map(|(c, _)| *c).collect();
+                let cols: Vec<&str> = k
+                    .holds
+                    .iter()
+                    .filter(|(_, h)| !h)
+                    .map(|(c, _)| c.trim_start_matches("product, ").trim_start_matches("product "))
+                    .collect();
                 format!("- not reproduced ({}): {}", cols.join(", "), k.what)
             })
             .collect();
