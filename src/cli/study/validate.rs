@@ -2348,7 +2348,11 @@ fn differences_section(ledger: &Ledger) -> String {
                     .holds
                     .iter()
                     .filter(|(_, h)| !h)
-                    .map(|(c, _)| c.trim_start_matches("product, ").trim_start_matches("product "))
+                    .map(|(c, _)| {
+                        c.trim_start_matches("product, ")
+                            .trim_start_matches("product (")
+                            .trim_end_matches(')')
+                    })
                     .collect();
                 format!("- not reproduced ({}): {}", cols.join(", "), k.what)
             })
