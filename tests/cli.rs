@@ -485,3 +485,38 @@ fn bench_quick_writes_the_report_section_and_figure() {
     assert_eq!(std::fs::read_to_string(&doc).unwrap().matches("<!-- bench:begin -->").count(), 1);
     assert_eq!(trb(&["bench", "--repeats", "0"]).status.code(), Some(2));
 }
+
+/// `study validate --quick` writes validation.md with every section, both traction columns
+/// and no non-finite number (about 30 s in release: three 10 ms dynamic runs per traction law).
+#[test]
+fn study_validate_quick_writes_every_section() {
+    let dir = Scratch::new("validate_quick");
+    let o = trb(&["study", "validate", "--quick", "--docs", p(&dir.0)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(dir.path("validation.md")).unwrap();
+    for needle in [
+        "# Validation",
+        "## 1. [W25]",
+        "### Fig. 6",
+        "### Fig. 10",
+        "### Fig. 11",
+        "### Energy balance per run",
+        "## 2. [D19]",
+        "## 3. [L22]",
+        "### Table 3",
+        "## 4. [Y22]",
+        "## 5. Friction torque against the SKF",
+        "## 6. [L22]'s friction torques",
+        "## 7. In plain words",
+        "product, traction 0",
+        "product, traction 1",
+        "product (dry)",
+    ] {
+        assert!(text.contains(needle), "no {needle:?} in validation.md");
+    }
+    let words: Vec<&str> = text.split(|c: char| !c.is_alphanumeric()).collect();
+    for bad in ["NaN", "nan", "inf", "Infinity"] {
+        assert!(!words.contains(&bad), "{bad} in validation.md");
+    }
+    assert!(!text.contains("Not computed"), "a case failed:\n{text}");
+}

@@ -316,6 +316,60 @@ impl Scenario {
         })
     }
 
+    /// Set the parameter `name` to `value` as a `parameters` entry of the file would (same
+    /// checks), replacing the file's value if it names one. For variants of a shipped case,
+    /// e.g. the other `traction` law.
+    pub fn set_parameter(&mut self, name: &str, value: serde_json::Value) -> Result<(), String> {
+        let b = &self.bearing.bearing;
+        let field = format!("parameters.{name}");
+        let (vr, row) = find(name, b.roller_count, &b.name).map_err(|e| format!("field `{field}`: {e}"))?;
+        if row.causality != Causality::Parameter {
+            return Err(format!(
+                "field `{field}`: `{name}` is {}, not a parameter",
+                causality_article(row.causality)
+            ));
+        }
+        let v = typed_value(row, &value).map_err(|e| format!("field `{field}`: {e}"))?;
+        self.parameters.retain(|(p, _)| p.vr != vr);
+        self.parameters.push((
+            Var {
+                vr,
+                name: name.to_string(),
+                ty: row.ty,
+            },
+            v,
+        ));
+        Ok(())
+    }
+
+    /// Hold the input `name` at `value` for the whole run (replacing the file's signal).
+    pub fn set_input(&mut self, name: &str, value: f64) -> Result<(), String> {
+        if !value.is_finite() {
+            return Err(format!("field `inputs.{name}`: must be a finite number, got {value}"));
+        }
+        let slot = self
+            .inputs
+            .iter_mut()
+            .find(|(v, _)| v.name == name)
+            .ok_or_else(|| format!("field `inputs.{name}`: not an input of the FMU"))?;
+        slot.1 = Signal::Constant(value);
+        Ok(())
+    }
+
+    /// End the run at `stop_time`, on the same communication step.
+    pub fn set_stop_time(&mut self, stop_time: f64) -> Result<(), String> {
+        let n = ((stop_time - self.start_time) / self.step).round();
+        if !stop_time.is_finite() || stop_time <= self.start_time || n < 1.0 || n > MAX_STEPS as f64 {
+            return Err(format!(
+                "field `stop_time`: {stop_time:?} does not give 1..{MAX_STEPS} steps of {:?} from {:?}",
+                self.step, self.start_time
+            ));
+        }
+        self.stop_time = stop_time;
+        self.n_steps = n as usize;
+        Ok(())
+    }
+
     /// Communication point t_k (t_N = stop_time exactly).
     pub fn time(&self, k: usize) -> f64 {
         if k >= self.n_steps {
@@ -516,6 +570,31 @@ mod tests {
         assert!(s
             .header()
             .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,frictionTorque"));
+    }
+
+    #[test]
+    fn variants_replace_parameters_inputs_and_the_stop_time() {
+        let mut s = parse(r#"{"stop_time": 0.05, "step": 0.0002, "parameters": {"traction": 0, "slices": 10}, "inputs": {"Fy": {"time": [0, 1], "values": [0, 5]}}}"#).unwrap();
+        s.set_parameter("traction", serde_json::json!(1)).unwrap();
+        s.set_parameter("mu", serde_json::json!(0.3)).unwrap();
+        assert_eq!(s.parameters.iter().filter(|(v, _)| v.name == "traction").count(), 1);
+        assert!(s.parameters.iter().any(|(v, x)| v.name == "traction" && *x == Value::Integer(1)));
+        assert!(s.parameters.iter().any(|(v, x)| v.name == "mu" && *x == Value::Real(0.3)));
+        assert!(s
+            .set_parameter("traction", serde_json::json!(7))
+            .unwrap_err()
+            .contains("parameters.traction"));
+        assert!(s
+            .set_parameter("Fy", serde_json::json!(1.0))
+            .unwrap_err()
+            .contains("not a parameter"));
+        s.set_input("Fy", 3.0).unwrap();
+        let fy = s.inputs.iter().find(|(v, _)| v.name == "Fy").unwrap();
+        assert_eq!(fy.1, Signal::Constant(3.0));
+        assert!(s.set_input("slices", 3.0).is_err());
+        s.set_stop_time(0.01).unwrap();
+        assert_eq!((s.n_steps, s.time(50)), (50, 0.01));
+        assert!(s.set_stop_time(0.0).is_err());
     }
 
     #[test]

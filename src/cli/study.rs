@@ -4,6 +4,7 @@
 //! `all` writes `docs/results-studies.md` and `docs/figures/*.svg`; a single study prints
 //! its section to stdout and writes its figures.
 
+mod validate;
 mod w25;
 
 use super::report::table;
@@ -23,6 +24,10 @@ pub enum Which {
     All,
     /// The dynamic study [W25] (fidelity 1, a few minutes): docs/results-dynamic.md.
     W25,
+    /// The product against the four studies' stated numbers and trends and the SKF
+    /// frictional-moment model, both traction laws: docs/validation.md (about half an hour;
+    /// --quick: a minute).
+    Validate,
 }
 
 #[derive(Debug, clap::Args)]
@@ -33,6 +38,10 @@ pub struct StudyArgs {
     /// Documentation folder: results-studies.md and figures/ are written there.
     #[arg(long, default_value = "docs")]
     pub docs: PathBuf,
+    /// Development run of `validate`: 10 ms dynamic runs instead of 50 ms, three dynamic
+    /// cases, fewer sweep points.
+    #[arg(long)]
+    pub quick: bool,
 }
 
 fn model_err(case: &str) -> impl Fn(ModelError) -> CliError + '_ {
@@ -764,6 +773,9 @@ fn y22_section(w: &Writer) -> Result<String, CliError> {
 pub fn run(args: StudyArgs) -> Result<(), CliError> {
     if args.which == Which::W25 {
         return w25::report(&args.docs);
+    }
+    if args.which == Which::Validate {
+        return validate::report(&args.docs, args.quick);
     }
     let figures = args.docs.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;

@@ -49,45 +49,89 @@ const CASES: &[&str] = &[
     "preload_fr45kN_xi0.003",
 ];
 
-/// What one case produced.
-#[derive(Debug, Clone, Default)]
-struct CaseResult {
-    name: String,
-    speed_rpm: f64,
-    fa: f64,
-    fr: f64,
-    xi_deg: f64,
-    /// statistics over the second half of the run
-    tilt_mean: f64,
-    tilt_max: f64,
-    tilt_amplitude: f64,
-    skew_mean: f64,
-    skew_max: f64,
-    skew_amplitude: f64,
-    moments: [f64; 6],
-    torque: f64,
-    power: f64,
-    reaction_fx: f64,
-    reaction_m: f64,
-    qo_max: f64,
-    /// roller 1 against time (s, rad)
-    tilt_series: Vec<(f64, f64)>,
-    skew_series: Vec<(f64, f64)>,
-    /// contact loads at the end: (azimuth, Qi, Qo, Qf) per roller
-    final_loads: Vec<(f64, f64, f64, f64)>,
-    wall: f64,
-    rhs: i32,
-    steps: i32,
-    simulated: f64,
+/// A variant of a shipped case: another `traction` law, another run length. The scenario
+/// file's own settings where `None`.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Variant {
+    pub traction: Option<i32>,
+    pub stop_time: Option<f64>,
 }
 
-fn run_case(dir: &Path, name: &str) -> Result<CaseResult, CliError> {
+/// The folder of the [W25] scenarios.
+pub(super) fn scenario_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/w25_dynamic")
+}
+
+/// What one case produced.
+#[derive(Debug, Clone, Default)]
+pub(super) struct CaseResult {
+    pub name: String,
+    pub speed_rpm: f64,
+    pub fa: f64,
+    pub fr: f64,
+    pub xi_deg: f64,
+    /// statistics over the second half of the run (angles in rad; `_max` the largest
+    /// magnitude of any roller at any sample, `_abs_mean` the mean magnitude over rollers
+    /// and samples, `_mean` the signed mean)
+    pub tilt_mean: f64,
+    pub tilt_abs_mean: f64,
+    pub tilt_max: f64,
+    pub tilt_amplitude: f64,
+    pub skew_mean: f64,
+    pub skew_abs_mean: f64,
+    pub skew_max: f64,
+    pub skew_amplitude: f64,
+    /// signed extremes of any roller at any sample
+    pub tilt_lo: f64,
+    pub tilt_hi: f64,
+    pub skew_lo: f64,
+    pub skew_hi: f64,
+    pub moments: [f64; 6],
+    pub torque: f64,
+    pub torque_raceway: f64,
+    pub torque_flange: f64,
+    pub torque_cage: f64,
+    pub power: f64,
+    pub reaction_fx: f64,
+    pub reaction_m: f64,
+    pub qo_max: f64,
+    /// largest cone contact load of any roller at any sample (N)
+    pub qi_peak: f64,
+    /// fewest and most rollers in contact at any sample
+    pub loaded_min: i32,
+    pub loaded_max: i32,
+    /// roller 1 against time (s, rad)
+    pub tilt_series: Vec<(f64, f64)>,
+    pub skew_series: Vec<(f64, f64)>,
+    /// contact loads at the end: (azimuth, Qi, Qo, Qf) per roller
+    pub final_loads: Vec<(f64, f64, f64, f64)>,
+    pub wall: f64,
+    pub rhs: i32,
+    pub steps: i32,
+    pub simulated: f64,
+}
+
+/// Run the case `dir/name.json` (as `trb simulate` would, with the `variant`'s changes) and
+/// take its statistics over the second half of the run.
+pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseResult, CliError> {
     let path = dir.join(format!("{name}.json"));
-    let scenario = Scenario::load(&path)?;
+    let mut scenario = Scenario::load(&path)?;
+    let invalid = |e: String| CliError::invalid(format!("{name}: {e}"));
+    if let Some(t) = variant.traction {
+        scenario.set_parameter("traction", t.into()).map_err(invalid)?;
+    }
+    if let Some(t) = variant.stop_time {
+        scenario.set_stop_time(t).map_err(invalid)?;
+    }
     let started = Instant::now();
     let mut sim = prepare(&scenario)?;
     let mut r = CaseResult {
         name: name.to_string(),
+        loaded_min: i32::MAX,
+        tilt_lo: f64::INFINITY,
+        tilt_hi: f64::NEG_INFINITY,
+        skew_lo: f64::INFINITY,
+        skew_hi: f64::NEG_INFINITY,
         ..Default::default()
     };
     let i = *sim.inputs();
@@ -105,19 +149,33 @@ fn run_case(dir: &Path, name: &str) -> Result<CaseResult, CliError> {
             return;
         }
         samples += 1.0;
+        let z = o.tilt.len() as f64;
         r.tilt_mean += o.tilt_mean;
         r.skew_mean += o.skew_mean;
+        r.tilt_abs_mean += o.tilt.iter().map(|v| v.abs()).sum::<f64>() / z;
+        r.skew_abs_mean += o.skew.iter().map(|v| v.abs()).sum::<f64>() / z;
         r.tilt_max = r.tilt_max.max(o.tilt_max);
         r.skew_max = r.skew_max.max(o.skew_max);
+        r.qi_peak = r.qi_peak.max(o.qi_max);
+        for (lo, hi, v) in [(&mut r.tilt_lo, &mut r.tilt_hi, &o.tilt), (&mut r.skew_lo, &mut r.skew_hi, &o.skew)] {
+            for x in v {
+                *lo = lo.min(*x);
+                *hi = hi.max(*x);
+            }
+        }
+        r.loaded_min = r.loaded_min.min(o.loaded_rollers);
+        r.loaded_max = r.loaded_max.max(o.loaded_rollers);
         t_lo = t_lo.min(o.tilt[0]);
         t_hi = t_hi.max(o.tilt[0]);
         s_lo = s_lo.min(o.skew[0]);
         s_hi = s_hi.max(o.skew[0]);
-        let z = o.tilt.len() as f64;
         for (m, v) in r.moments.iter_mut().zip([&o.nit, &o.not, &o.nft, &o.nis, &o.nos, &o.nfs]) {
             *m += v.iter().sum::<f64>() / z;
         }
         r.torque += o.friction_torque;
+        r.torque_raceway += o.friction_torque_raceway;
+        r.torque_flange += o.friction_torque_flange;
+        r.torque_cage += o.friction_torque_cage;
         r.power += o.power_loss;
         r.reaction_fx += o.reaction_fx;
         r.reaction_m += (o.reaction_my * o.reaction_my + o.reaction_mz * o.reaction_mz).sqrt();
@@ -135,7 +193,12 @@ fn run_case(dir: &Path, name: &str) -> Result<CaseResult, CliError> {
     for v in [
         &mut r.tilt_mean,
         &mut r.skew_mean,
+        &mut r.tilt_abs_mean,
+        &mut r.skew_abs_mean,
         &mut r.torque,
+        &mut r.torque_raceway,
+        &mut r.torque_flange,
+        &mut r.torque_cage,
         &mut r.power,
         &mut r.reaction_fx,
         &mut r.reaction_m,
@@ -161,7 +224,10 @@ fn run_all(dir: &Path) -> Result<Vec<CaseResult>, CliError> {
     let mut results: Vec<Option<Result<CaseResult, CliError>>> = vec![None; CASES.len()];
     for chunk in (0..CASES.len()).collect::<Vec<_>>().chunks(threads) {
         let done: Vec<(usize, Result<CaseResult, CliError>)> = std::thread::scope(|s| {
-            let handles: Vec<_> = chunk.iter().map(|&i| (i, s.spawn(move || run_case(dir, CASES[i])))).collect();
+            let handles: Vec<_> = chunk
+                .iter()
+                .map(|&i| (i, s.spawn(move || run_case(dir, CASES[i], Variant::default()))))
+                .collect();
             handles
                 .into_iter()
                 .map(|(i, h)| {
@@ -231,8 +297,7 @@ fn series_vs(rs: &[CaseResult], names: &[&str], x: impl Fn(&CaseResult) -> f64, 
 
 /// Write docs/results-dynamic.md and the figures.
 pub fn report(docs: &Path) -> Result<(), CliError> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir: PathBuf = root.join("scenarios/w25_dynamic");
+    let dir = scenario_dir();
     let figures = docs.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
     let w = Writer { figures };
