@@ -39,9 +39,12 @@
 //! Schur complement as in the in-plane solver.
 //!
 //! Torque [D19]: T = H / omega with H the friction power of roller-race microslip (sliding
-//! speed across the contact width: the slice's kinematic sliding plus the Heathcote microslip
-//! of a freely rolling line contact, combined with the axial sliding of the skewed roller,
-//! integrated with Simpson's rule over the Hertz pressure), end-rib sliding (Karna: Coulomb
+//! speed across the contact width in the rolling direction: the slice's kinematic sliding plus
+//! the Heathcote microslip of a freely rolling line contact, integrated with Simpson's rule over
+//! the Hertz pressure) and of the Eq. (7) thrust mu q |sin phi| against the skewed roller's
+//! axial sliding v |sin phi| (the power of the force the model applies; until 2026-11-24 the
+//! axial sliding entered the Coulomb integral at full mu, 12 times the thrust at the pocket
+//! limit, and the raceway torque jumped where the rollers reached it), end-rib sliding (Karna: Coulomb
 //! force times the sliding speed at the rib contact) and roller-cage sliding (mu F_c at each
 //! corner times the roller surface speed there).
 
@@ -780,8 +783,11 @@ impl QuasiStatic {
                     let (b, _) = line_contact_half_width(q / g.slice_len, sl.r_bar[k], e_prime);
                     // Microslip along the direction of motion of the ring (cone +e_t, cup -e_t).
                     let micro = -sl.thrust_sign * speed * sl.rolling[k] * sl.microslip[k] * b * b;
-                    let v_axial = v_roll * e.phi.sin();
-                    h_race += q * microslip_power(mu, v_k, micro, sk.u0, v_axial);
+                    // the thrust of Eq. (7), mu q |sin phi| along the raceway, against the skewed
+                    // roller's axial sliding v_roll |sin phi|: its power, consistent with the
+                    // force the model applies (the rolling-direction microslip carries the rest)
+                    let v_axial = v_roll * e.phi.sin().abs();
+                    h_race += q * (microslip_power(mu, v_k, micro, sk.u0) + dry_mu(mu, v_axial).abs() * e.phi.sin().abs() * v_axial);
                     traction += q * dry_mu(mu, v_k);
                     let ring_force = q * dry_mu(mu, v_k);
                     if is_cone {
@@ -852,11 +858,11 @@ impl QuasiStatic {
     }
 }
 
-/// Friction power per unit load of one slice (W/N): Coulomb mu under the semi-elliptical
-/// Hertz pressure across the contact width, sliding speed v(u) = v_k + micro (u^2 - u0^2)
-/// in the rolling direction (kinematic sliding plus the free-rolling microslip) combined with
-/// the axial sliding `v_axial` of a skewed roller; Simpson's rule over u = y/b in [-1, 1].
-pub(super) fn microslip_power(mu: f64, v_k: f64, micro: f64, u0: f64, v_axial: f64) -> f64 {
+/// Friction power per unit load of one slice (W/N) in the rolling direction [D19, Eq. (10)]:
+/// Coulomb mu under the semi-elliptical Hertz pressure across the contact width, sliding speed
+/// v(u) = v_k + micro (u^2 - u0^2) (kinematic sliding plus the free-rolling microslip);
+/// Simpson's rule over u = y/b in [-1, 1].
+pub(super) fn microslip_power(mu: f64, v_k: f64, micro: f64, u0: f64) -> f64 {
     let n = SIMPSON;
     let du = 2.0 / n as f64;
     let mut sum = 0.0;
@@ -870,7 +876,7 @@ pub(super) fn microslip_power(mu: f64, v_k: f64, micro: f64, u0: f64, v_axial: f
             2.0
         };
         let v = v_k + micro * (u * u - u0 * u0);
-        let speed = (v * v + v_axial * v_axial).sqrt();
+        let speed = v.abs();
         let p = (2.0 / std::f64::consts::PI) * (1.0 - u * u).max(0.0).sqrt();
         sum += w * p * dry_mu(mu, speed) * speed;
     }
