@@ -44,6 +44,7 @@ const V_EPS: f64 = tr::DRY_REGULARISATION_SPEED;
 /// dissipated power after 1, 2, 3 steps; without them 6 %).
 const SLOPED_CONTACT_ITERATIONS: usize = 3;
 
+use tr::traction::LN_MIN_FILM;
 use tr::MIN_BOUNDARY_ENTRAINMENT;
 
 /// Constants of the contact model.
@@ -495,9 +496,6 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
     }
 }
 
-/// ln(1e-9): the film thickness floor of the Eyring law.
-const LN_MIN_FILM: f64 = -20.723_265_836_946_41;
-
 /// A raceway as one slice loop sees it: the roller's kinematics in the raceway's frame, the
 /// velocity field of the raceway and of the orbiting contact point in that frame.
 struct Race<'a> {
@@ -632,7 +630,8 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
             // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
             // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
             // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
-            let w_roll = w_rel_perp(race, &n, &lever);
+            // the roller's rotation relative to the raceway, without its spin about the normal
+            let w_roll = w_rel - n * w_rel.dot(&n);
             let norm = (w_roll.norm_squared() + line.roll_eps2[k]).sqrt();
             let m_roll = w_roll * (-couple / norm);
             sum.m += m_roll;
@@ -641,14 +640,6 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
         sum.extrapolated |= ext;
     }
     sum
-}
-
-/// The roller's angular velocity relative to the raceway, without its part about the contact
-/// normal `n` (spin): the rolling rotation the EHL rolling couple resists.
-#[inline(always)]
-fn w_rel_perp(race: &Race, n: &V3, _lever: &V3) -> V3 {
-    let w_rel = race.w - race.ring_omega;
-    w_rel - n * w_rel.dot(n)
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the

@@ -89,12 +89,6 @@ pub fn thermal_reduction_ln(ln_load: f64, ph_e: f64, ln_slide_roll: f64) -> f64 
     (num / den).max(MIN_THERMAL_FACTOR)
 }
 
-/// Thermal loading parameter L = beta eta0 u_e^2 / k of the inlet.
-#[inline]
-pub fn thermal_load(beta: f64, eta0: f64, conductivity: f64, u_e: f64) -> f64 {
-    beta * eta0 * u_e * u_e / conductivity
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
