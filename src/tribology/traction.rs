@@ -35,7 +35,8 @@
 //!   tau tau_L / (tau^4 + tau_L^4)^(1/4).
 //!
 //! 1 — Newtonian Eyring (the law before 2026-11-24; isothermal): Eyring at the Roelands
-//! viscosity (z = 0.4) of the mean pressure, capped smoothly at tau_L = Lambda p.
+//! viscosity (z = 0.4) of the mean pressure, capped smoothly at 0.08 p, with its fixed
+//! constants (`tribology::full_film_mu`, `EYRING_STRESS`, `LIMITING_SHEAR`).
 //!
 //! The solids' thermal data are bearing steel's (AISI 52100: K_s = 46 W/(m K),
 //! kappa_s = 1.27e-5 m^2/s; Harris & Kotzalas, Essential Concepts, 5th ed., Table 5.x).
@@ -249,20 +250,6 @@ fn asinh_exp(g: f64) -> f64 {
     }
 }
 
-/// Newtonian Eyring traction coefficient (law 1, signed like `v_s`): mean shear stress of an
-/// isothermal Eyring film at viscosity `eta` over the mean pressure, smoothly capped at the
-/// limiting shear stress `limiting_shear` p.
-#[inline]
-pub fn newtonian_eyring_mu(eta: f64, eyring_stress: f64, limiting_shear: f64, v_s: f64, h: f64, p_mean: f64) -> f64 {
-    if p_mean <= 0.0 || v_s == 0.0 {
-        return 0.0;
-    }
-    let h = h.max(1e-9);
-    let x = eta * v_s.abs() / (h * eyring_stress);
-    let tau_e = eyring_stress * asinh_exp(fm::ln(x));
-    v_s.signum() * limit(tau_e, limiting_shear * p_mean) / p_mean
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -361,19 +348,5 @@ mod tests {
             }
             assert_eq!(solve_thermal_eyring(ln_x, 0.0), asinh_exp(ln_x));
         }
-    }
-
-    #[test]
-    fn newtonian_law_is_smooth_odd_and_limited() {
-        let eta = crate::tribology::roelands_viscosity(0.033, 1e9);
-        let mu = |v: f64| newtonian_eyring_mu(eta, 5e6, 0.08, v, 1e-7, 1e9);
-        assert_eq!(mu(0.0), 0.0);
-        let (a, b) = (mu(1e-3), mu(1e-2));
-        assert!(a > 0.0 && b > a);
-        let tiny = mu(1e-9);
-        assert!((tiny - eta * 1e-9 / 1e-7 / 1e9).abs() < 1e-6 * tiny);
-        assert_eq!(mu(-1e-2), -b);
-        let c = mu(100.0);
-        assert!(c <= 0.08 && c > 0.03, "{c}");
     }
 }
