@@ -89,7 +89,7 @@ pub struct Simulation {
 }
 
 /// Magic and version of the serialized state format.
-const STATE_MAGIC: &[u8; 8] = b"TRBSTAT1";
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT2";
 
 impl Simulation {
     /// A new element for `bearing`, parameters and inputs at the bearing's defaults.

@@ -51,6 +51,30 @@ pub struct Counters {
     pub factorizations: u64,
 }
 
+/// The step-size controller's memory between calls: the proposed next step and the error
+/// of the last accepted step (the I part of the PI controller). It belongs to the caller's
+/// state, with the solution, so that a restored state resumes bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StepControl {
+    /// Next proposed step (s); 0 or non-finite: not known yet.
+    pub h: f64,
+    /// Scaled error of the last accepted step, floored at 1e-4 (Hairer's start value).
+    pub err_prev: f64,
+}
+
+impl StepControl {
+    /// No step proposed yet, the controller's start value.
+    pub const fn start(h: f64) -> StepControl {
+        StepControl { h, err_prev: 1e-4 }
+    }
+}
+
+impl Default for StepControl {
+    fn default() -> StepControl {
+        StepControl::start(0.0)
+    }
+}
+
 /// RMS over the components of the error `e` scaled by `atol_i + rtol_i max(|y_i|, |y_new_i|)`.
 pub fn error_norm(e: &[f64], y: &[f64], y_new: &[f64], atol: &[f64], rtol: &[f64]) -> f64 {
     let mut sum = 0.0;
@@ -100,7 +124,6 @@ pub struct Dopri5 {
     pub max_step: f64,
     /// Steps allowed per call of `integrate`.
     pub step_budget: u64,
-    err_prev: f64,
 }
 
 impl Dopri5 {
@@ -114,12 +137,11 @@ impl Dopri5 {
             rtol,
             max_step,
             step_budget: 50_000_000,
-            err_prev: 1e-4,
         }
     }
 
-    /// Integrate `y` from `t` to `t_end` with trial step `h` (updated in place to the next
-    /// proposed step). `f(t, y, dydt)` evaluates the right-hand side. `fsal` holds the
+    /// Integrate `y` from `t` to `t_end` with the controller state `step` (its trial step is
+    /// updated in place to the next proposed step). `f(t, y, dydt)` evaluates the right-hand side. `fsal` holds the
     /// derivative at (t, y) from the last accepted step (first same as last); empty means
     /// unknown. It belongs to the caller's state, so a restored state resumes bit for bit.
     #[allow(clippy::too_many_arguments)]
@@ -129,7 +151,7 @@ impl Dopri5 {
         t: &mut f64,
         y: &mut [f64],
         t_end: f64,
-        h: &mut f64,
+        step: &mut StepControl,
         counters: &mut Counters,
         fsal: &mut Vec<f64>,
     ) -> Result<(), Failure> {
@@ -140,12 +162,12 @@ impl Dopri5 {
             let mut f = f;
             f(*t, y, &mut self.k[0]);
             counters.rhs += 1;
-            let r = self.run(f, t, y, t_end, h, counters);
+            let r = self.run(f, t, y, t_end, step, counters);
             fsal.clear();
             fsal.extend_from_slice(&self.k[0]);
             return r;
         }
-        let r = self.run(f, t, y, t_end, h, counters);
+        let r = self.run(f, t, y, t_end, step, counters);
         fsal.copy_from_slice(&self.k[0]);
         r
     }
@@ -156,10 +178,11 @@ impl Dopri5 {
         t: &mut f64,
         y: &mut [f64],
         t_end: f64,
-        h: &mut f64,
+        step: &mut StepControl,
         counters: &mut Counters,
     ) -> Result<(), Failure> {
         let n = y.len();
+        let StepControl { h, err_prev } = step;
         let mut steps_here = 0u64;
         let h_floor = |t: f64| 1e-15 * t.abs().max(1e-3);
         if !(*h > 0.0 && h.is_finite()) {
@@ -231,10 +254,10 @@ impl Dopri5 {
                 let fac = if err == 0.0 {
                     5.0
                 } else {
-                    0.9 * err.powf(-0.7 / 5.0) * self.err_prev.powf(0.4 / 5.0)
+                    0.9 * err.powf(-0.7 / 5.0) * err_prev.powf(0.4 / 5.0)
                 };
                 let fac = fac.clamp(0.2, 5.0);
-                self.err_prev = err.max(1e-4);
+                *err_prev = err.max(1e-4);
                 if !last {
                     *h = hs * fac;
                 } else {
@@ -267,7 +290,7 @@ mod tests {
         let w = 7.0;
         let mut ig = Dopri5::new(2, vec![tol; 2], vec![tol; 2], 1.0);
         let mut y = [1.0, 0.0];
-        let (mut t, mut h) = (0.0, 1e-3);
+        let (mut t, mut h) = (0.0, StepControl::start(1e-3));
         let mut c = Counters::default();
         let mut fsal = Vec::new();
         for k in 1..=10 {
@@ -305,7 +328,7 @@ mod tests {
     fn non_finite_right_hand_side_is_reported() {
         let mut ig = Dopri5::new(1, vec![1e-6], vec![1e-6], 1.0);
         let mut y = [1.0];
-        let (mut t, mut h) = (0.0, 0.1);
+        let (mut t, mut h) = (0.0, StepControl::start(0.1));
         let mut c = Counters::default();
         let r = ig.integrate(
             |_, _, d: &mut [f64]| d[0] = f64::NAN,

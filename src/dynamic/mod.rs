@@ -40,7 +40,7 @@ use crate::bearing::Bearing;
 use crate::geometry::Geometry;
 use crate::model::{Inputs, ModelError, Outputs, Parameters, Preload};
 use crate::quasi_static::QuasiStatic;
-use integrator::{Counters, Dopri5, Failure};
+use integrator::{Counters, Dopri5, Failure, StepControl};
 use jacobian::{BlockSystem, NG};
 use multistep::MilneHamming;
 use nalgebra::{Matrix3, Vector3};
@@ -62,8 +62,8 @@ pub const PER_ROLLER: usize = 11;
 pub struct DynamicState {
     pub y: Vec<f64>,
     pub t: f64,
-    /// Next proposed integrator step.
-    pub h: f64,
+    /// The step-size controller's memory (next proposed step, last error).
+    pub step: StepControl,
     pub counters: Counters,
     /// Derivative at (t, y) from the last accepted step and the inputs it was computed with.
     pub fsal: Vec<f64>,
@@ -247,7 +247,7 @@ impl Dynamic {
         DynamicState {
             y,
             t: t0,
-            h: 0.0,
+            step: StepControl::default(),
             counters: Counters::default(),
             fsal: Vec::new(),
             fsal_inputs: None,
@@ -279,7 +279,7 @@ impl Dynamic {
                 &mut t,
                 &mut state.y,
                 t_end,
-                &mut state.h,
+                &mut state.step,
                 &mut state.counters,
                 &mut state.fsal,
             ),
@@ -307,7 +307,7 @@ impl Dynamic {
                     &mut t,
                     &mut state.y,
                     t_end,
-                    &mut state.h,
+                    &mut state.step,
                     &mut state.counters,
                     &mut state.fsal,
                     &mut state.memory,

@@ -20,7 +20,7 @@
 //! (`memory`), and the factorisation is redone from them at every call, so a restored state
 //! continues bit for bit.
 
-use super::integrator::{error_norm, Counters, Failure};
+use super::integrator::{error_norm, Counters, Failure, StepControl};
 use super::jacobian::{BlockJacobian, BlockLu, BlockSystem, NG};
 
 const S: usize = 4;
@@ -80,7 +80,6 @@ pub struct RosenbrockW {
     c: [[f64; S]; S],
     m: [f64; S],
     e: [f64; S],
-    err_prev: f64,
 }
 
 /// Layout of the integrator memory: [age, Jacobian blocks].
@@ -139,7 +138,6 @@ impl RosenbrockW {
             c,
             m,
             e,
-            err_prev: 1e-4,
         }
     }
 
@@ -155,7 +153,7 @@ impl RosenbrockW {
         self.lu.alpha = f64::NAN;
     }
 
-    /// Integrate `y` from `t` to `t_end`; `h` is the proposed step (updated), `fsal` the
+    /// Integrate `y` from `t` to `t_end`; `step` the controller state (its proposed step updated), `fsal` the
     /// derivative at (t, y) or empty, `memory` the Jacobian and its age or empty.
     #[allow(clippy::too_many_arguments)]
     pub fn integrate(
@@ -164,12 +162,13 @@ impl RosenbrockW {
         t: &mut f64,
         y: &mut [f64],
         t_end: f64,
-        h: &mut f64,
+        step: &mut StepControl,
         counters: &mut Counters,
         fsal: &mut Vec<f64>,
         memory: &mut Vec<f64>,
     ) -> Result<(), Failure> {
         let n = self.n;
+        let StepControl { h, err_prev } = step;
         let z = self.jac.z;
         if fsal.len() != n {
             fsal.clear();
@@ -292,11 +291,11 @@ impl RosenbrockW {
                 let fac = if err == 0.0 {
                     5.0
                 } else {
-                    0.9 * err.powf(-0.7 / 3.0) * self.err_prev.powf(0.4 / 3.0)
+                    0.9 * err.powf(-0.7 / 3.0) * err_prev.powf(0.4 / 3.0)
                 };
                 // keep the step (and the factorisation) unless it should grow by 20 % or shrink
                 let fac = if (1.0..=1.2).contains(&fac) { 1.0 } else { fac.clamp(0.2, 5.0) };
-                self.err_prev = err.max(1e-4);
+                *err_prev = err.max(1e-4);
                 *h = (hs * fac).min(self.max_step);
             } else {
                 counters.rejected += 1;
@@ -377,7 +376,7 @@ mod tests {
                 y[NG + M * j] = 1.0;
                 y[NG + M * j + 2] = 1.0_f64.sin();
             }
-            let (mut t, mut h) = (0.0, 1e-4);
+            let (mut t, mut h) = (0.0, StepControl::start(1e-4));
             let mut c = Counters::default();
             let (mut fsal, mut mem) = (Vec::new(), Vec::new());
             ig.integrate(&mut sys, &mut t, &mut y, 0.5, &mut h, &mut c, &mut fsal, &mut mem)
