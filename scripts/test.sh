@@ -98,6 +98,11 @@ begin "fuzz (stable driver, 2 x 10 s)"
 end "fuzz (stable driver)"
 
 # --- 4. Python harness ---------------------------------------------------------------------------
+if [ -x "$ROOT/../shared/tools/fmuCheck.linux64" ] || [ -n "${TRB_FMUCHECK:-}" ]; then
+    echo "FMU Compliance Checker: ${TRB_FMUCHECK:-$ROOT/../shared/tools/fmuCheck.linux64} (tests/python/test_package.py)"
+else
+    echo "NOTE: no FMU Compliance Checker at $ROOT/../shared/tools/fmuCheck.linux64 (set TRB_FMUCHECK): its checks are skipped"
+fi
 begin "pytest tests/python"
 "$VENV/bin/python" -m pytest tests/python -q -p no:cacheprovider "$@" || fail "pytest tests/python"
 end "pytest tests/python"

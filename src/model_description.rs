@@ -32,6 +32,13 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     ("logSolver", "Newton iterations and residual of every solve (debug)"),
 ];
 
+/// Copyright and license of the FMU (the crate's `license`).
+pub const COPYRIGHT: &str = "Copyright (c) 2025-2026 tapered-roller-bearing contributors";
+pub const LICENSE: &str = "MIT License (see documentation/index.html)";
+/// The source date of this build (`build.rs`: SOURCE_DATE_EPOCH, else the git commit time),
+/// so that equal sources give equal model descriptions and GUIDs.
+pub const GENERATION_DATE: &str = env!("TRB_SOURCE_DATE");
+
 /// Units with their SI base-unit exponents (kg, m, s, rad, K) and display units (name, factor).
 const UNITS: &[(&str, [i32; 5], &[(&str, f64)])] = &[
     ("1", [0, 0, 0, 0, 0], &[]),
@@ -84,7 +91,7 @@ fn render(bearing: &Bearing, guid: &str) -> String {
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         x,
-        r#"<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{guid}" description="{}" author="tapered-roller-bearing contributors" version="{}" generationTool="tapered-roller-bearing {}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+        r#"<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{guid}" description="{}" author="tapered-roller-bearing contributors" version="{}" copyright="{COPYRIGHT}" license="{LICENSE}" generationTool="tapered-roller-bearing {}" generationDateAndTime="{GENERATION_DATE}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
         xml_escape(&format!(
             "Tapered roller bearing element (quasi-static and dynamic), bearing {}: {}",
             bearing.name, bearing.description
@@ -116,15 +123,22 @@ fn render(bearing: &Bearing, guid: &str) -> String {
         }
     }
     let _ = writeln!(x, "  </UnitDefinitions>");
+    write_type_definitions(&mut x);
     let _ = writeln!(x, "  <LogCategories>");
     for (name, desc) in LOG_CATEGORIES {
         let _ = writeln!(x, r#"    <Category name="{name}" description="{}"/>"#, xml_escape(desc));
     }
     let _ = writeln!(x, "  </LogCategories>");
-    let _ = writeln!(x, r#"  <DefaultExperiment startTime="0.0" stopTime="0.1" stepSize="0.001"/>"#);
+    let tolerance = sim.get_real(variables::TOLERANCE).expect("start value of the tolerance");
+    let _ = writeln!(
+        x,
+        r#"  <DefaultExperiment startTime="0.0" stopTime="0.1" tolerance="{}" stepSize="0.001"/>"#,
+        real(tolerance)
+    );
     let _ = writeln!(x, "  <ModelVariables>");
-    let mut outputs = Vec::new();
-    for (index, (vr, name, row)) in variables::expanded(z).into_iter().enumerate() {
+    let expanded = variables::expanded(z);
+    for (vr, name, row) in &expanded {
+        let vr = *vr;
         let j = if row.per_roller { (vr - row.vr) as usize + 1 } else { 0 };
         let causality = match row.causality {
             Causality::Parameter => "parameter",
@@ -137,9 +151,6 @@ fn render(bearing: &Bearing, guid: &str) -> String {
             Variability::Discrete => "discrete",
             Variability::Continuous => "continuous",
         };
-        if row.causality == Causality::Output {
-            outputs.push(index + 1);
-        }
         let _ = writeln!(
             x,
             r#"    <ScalarVariable name="{}" valueReference="{vr}" description="{}" causality="{causality}" variability="{variability}">"#,
@@ -168,6 +179,21 @@ fn render(bearing: &Bearing, guid: &str) -> String {
                 }
                 let _ = writeln!(x, "      <Real{attrs}/>");
             }
+            VarType::Integer if row.enumeration.is_some() => {
+                let e = row.enumeration.expect("checked");
+                let _ = write!(attrs, r#" declaredType="{}""#, e.name);
+                if let Some(m) = row.min {
+                    let _ = write!(attrs, r#" min="{}""#, m as i64);
+                }
+                if let Some(m) = row.max {
+                    let _ = write!(attrs, r#" max="{}""#, m as i64);
+                }
+                if has_start {
+                    let v = sim.get_integer(vr).expect("start value of an enumeration");
+                    let _ = write!(attrs, r#" start="{v}""#);
+                }
+                let _ = writeln!(x, "      <Enumeration{attrs}/>");
+            }
             VarType::Integer => {
                 if let Some(m) = row.min {
                     let _ = write!(attrs, r#" min="{}""#, m as i64);
@@ -192,20 +218,84 @@ fn render(bearing: &Bearing, guid: &str) -> String {
         let _ = writeln!(x, "    </ScalarVariable>");
     }
     let _ = writeln!(x, "  </ModelVariables>");
+    write_model_structure(&mut x, &expanded);
+    let _ = writeln!(x, "</fmiModelDescription>");
+    x
+}
+
+/// `<TypeDefinitions>`: one Enumeration type per mode parameter.
+fn write_type_definitions(x: &mut String) {
+    let _ = writeln!(x, "  <TypeDefinitions>");
+    for row in variables::TABLE {
+        let Some(e) = row.enumeration else { continue };
+        let first = row.min.unwrap_or(0.0) as i64;
+        let _ = writeln!(
+            x,
+            r#"    <SimpleType name="{}" description="{}">"#,
+            e.name,
+            xml_escape(row.description)
+        );
+        let _ = writeln!(x, "      <Enumeration>");
+        for (k, (item, description)) in e.items.iter().enumerate() {
+            let _ = writeln!(
+                x,
+                r#"        <Item name="{item}" value="{}" description="{}"/>"#,
+                first + k as i64,
+                xml_escape(description)
+            );
+        }
+        let _ = writeln!(x, "      </Enumeration>");
+        let _ = writeln!(x, "    </SimpleType>");
+    }
+    let _ = writeln!(x, "  </TypeDefinitions>");
+}
+
+/// `<ModelStructure>`: every output with the inputs it depends on directly at communication
+/// points, and in initialization mode the inputs and parameters it depends on (the table's
+/// `depends_on` and `initial_depends_on`; without them, all of them: the quasi-static model
+/// is an algebraic function of every input and parameter).
+fn write_model_structure(x: &mut String, expanded: &[(u32, String, &'static variables::Variable)]) {
+    // 1-based ScalarVariable indices of the knowns
+    let index_of = |name: &str| {
+        expanded
+            .iter()
+            .position(|(_, n, _)| n == name)
+            .map(|i| i + 1)
+            .unwrap_or_else(|| panic!("dependency {name} is not a variable"))
+    };
+    let of_causality = |c: Causality| -> Vec<usize> {
+        (0..expanded.len())
+            .filter(|&i| expanded[i].2.causality == c)
+            .map(|i| i + 1)
+            .collect()
+    };
+    let inputs = of_causality(Causality::Input);
+    let mut knowns_at_init = inputs.clone();
+    knowns_at_init.extend(of_causality(Causality::Parameter));
+    knowns_at_init.sort_unstable();
+    let list = |declared: Option<&[&str]>, all: &[usize]| -> String {
+        let mut ix: Vec<usize> = match declared {
+            Some(names) => names.iter().map(|n| index_of(n)).collect(),
+            None => all.to_vec(),
+        };
+        ix.sort_unstable();
+        ix.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" ")
+    };
+    let outputs: Vec<usize> = of_causality(Causality::Output);
     let _ = writeln!(x, "  <ModelStructure>");
     let _ = writeln!(x, "    <Outputs>");
-    for i in &outputs {
-        let _ = writeln!(x, r#"      <Unknown index="{i}"/>"#);
+    for &i in &outputs {
+        let deps = list(expanded[i - 1].2.depends_on, &inputs);
+        let _ = writeln!(x, r#"      <Unknown index="{i}" dependencies="{deps}"/>"#);
     }
     let _ = writeln!(x, "    </Outputs>");
     let _ = writeln!(x, "    <InitialUnknowns>");
-    for i in &outputs {
-        let _ = writeln!(x, r#"      <Unknown index="{i}"/>"#);
+    for &i in &outputs {
+        let deps = list(expanded[i - 1].2.initial_depends_on, &knowns_at_init);
+        let _ = writeln!(x, r#"      <Unknown index="{i}" dependencies="{deps}"/>"#);
     }
     let _ = writeln!(x, "    </InitialUnknowns>");
     let _ = writeln!(x, "  </ModelStructure>");
-    let _ = writeln!(x, "</fmiModelDescription>");
-    x
 }
 
 #[cfg(test)]

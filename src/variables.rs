@@ -41,7 +41,21 @@ pub struct Variable {
     pub display_unit: Option<&'static str>,
     pub min: Option<f64>,
     pub max: Option<f64>,
+    /// A mode: the Integer is declared as this Enumeration type (items valued min, min + 1, ...).
+    pub enumeration: Option<&'static Enumeration>,
+    /// Outputs: the inputs the value depends on directly at communication points (`None`: all).
+    pub depends_on: Option<&'static [&'static str]>,
+    /// Outputs: the inputs and parameters the value depends on in initialization mode
+    /// (`None`: all of them).
+    pub initial_depends_on: Option<&'static [&'static str]>,
     pub description: &'static str,
+}
+
+/// An FMI Enumeration type of a mode parameter: item names and descriptions, in value order.
+#[derive(Debug, Clone, Copy)]
+pub struct Enumeration {
+    pub name: &'static str,
+    pub items: &'static [(&'static str, &'static str)],
 }
 
 impl Variable {

@@ -407,6 +407,7 @@ fn write_bearing(h: &mut String, b: &Bearing, json: &str) {
 fn type_name(v: &Variable) -> &'static str {
     match v.ty {
         VarType::Real => "Real",
+        VarType::Integer if v.enumeration.is_some() => "Enumeration",
         VarType::Integer => "Integer",
         VarType::Boolean => "Boolean",
     }
@@ -430,6 +431,17 @@ fn causality_name(c: Causality) -> &'static str {
 }
 
 fn range(v: &Variable) -> String {
+    if let Some(e) = v.enumeration {
+        // the items by value: 0 quasiStatic, 1 dynamic
+        let first = v.min.unwrap_or(0.0) as i64;
+        let items: Vec<String> = e
+            .items
+            .iter()
+            .enumerate()
+            .map(|(k, (n, _))| format!("{} {n}", first + k as i64))
+            .collect();
+        return items.join(", ");
+    }
     let f = |x: f64| {
         if v.ty == VarType::Integer {
             format!("{}", x as i64)

@@ -264,7 +264,7 @@ class Model:
         v = self.vars[name]
         if v.type == "Real":
             return float(v.start)
-        if v.type == "Integer":
+        if v.type in ("Integer", "Enumeration"):
             return int(v.start)
         if v.type == "Boolean":
             return v.start in ("true", "1", True)
@@ -358,7 +358,7 @@ def set_values(fmu: FMU2Slave, values: dict):
         v = model.vars[name]
         if v.type == "Real":
             fmu.setReal([v.valueReference], [float(value)])
-        elif v.type == "Integer":
+        elif v.type in ("Integer", "Enumeration"):
             fmu.setInteger([v.valueReference], [int(value)])
         elif v.type == "Boolean":
             fmu.setBoolean([v.valueReference], [bool(value)])
@@ -370,7 +370,7 @@ def get_values(fmu: FMU2Slave, names: list[str]) -> dict:
     """Get variables by name (Real and Integer)."""
     model: Model = fmu.model
     reals = [n for n in names if model.vars[n].type == "Real"]
-    ints = [n for n in names if model.vars[n].type == "Integer"]
+    ints = [n for n in names if model.vars[n].type in ("Integer", "Enumeration")]
     out = {}
     if reals:
         out.update(zip(reals, fmu.getReal([model.vr(n) for n in reals])))

@@ -62,12 +62,12 @@ def test_get_real_before_initialization(fmu, model, hub):
 def test_setting_a_fixed_parameter_after_initialization(fmu, model, hub, name, value):
     initialize(fmu)
     v = model.vars[name]
-    before = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Boolean": fmu.getBoolean}[v.type]([v.valueReference])
-    setter = {"Real": fmu.setReal, "Integer": fmu.setInteger, "Boolean": fmu.setBoolean}[v.type]
+    before = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Enumeration": fmu.getInteger, "Boolean": fmu.getBoolean}[v.type]([v.valueReference])
+    setter = {"Real": fmu.setReal, "Integer": fmu.setInteger, "Enumeration": fmu.setInteger, "Boolean": fmu.setBoolean}[v.type]
     mark = hub.mark()
     assert call_status(setter, [v.valueReference], [value]) == FMI2_ERROR
     assert_error_logged(hub, mark, name)
-    after = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Boolean": fmu.getBoolean}[v.type]([v.valueReference])
+    after = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Enumeration": fmu.getInteger, "Boolean": fmu.getBoolean}[v.type]([v.valueReference])
     assert after == before
     # The instance goes on.
     assert call_status(fmu.doStep, 0.0, H) == FMI2_OK

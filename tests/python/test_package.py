@@ -3,6 +3,7 @@ fmu-manipulation-toolbox), the contract's names, capabilities and units, and agr
 the variable table modelDescription/variables.json (the single source of truth)."""
 
 import json
+import os
 import re
 import subprocess
 import sys
@@ -12,7 +13,7 @@ from pathlib import Path
 import pytest
 from fmpy.validation import validate_fmu
 
-from conftest import MODEL_IDENTIFIER, PRESETS, REPO
+from conftest import DEFAULT_PRESET, MODEL_IDENTIFIER, PRESETS, REPO
 
 # The contract (shared spec INTERFACE.md): names that must exist, with their causality.
 CONTRACT_PARAMETERS = [
@@ -36,6 +37,31 @@ def fmutool_check(path: Path) -> subprocess.CompletedProcess:
     exe = Path(sys.executable).with_name("fmutool")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "fmu_manipulation_toolbox.cli.fmutool"]
     return subprocess.run([*cmd, "-input", str(path), "-check"], capture_output=True, text=True, timeout=300)
+
+
+# The Modelica Association's FMU Compliance Checker (../shared/tools, see its README there);
+# TRB_FMUCHECK names another copy.
+FMUCHECK = Path(os.environ.get("TRB_FMUCHECK", REPO.parent / "shared" / "tools" / "fmuCheck.linux64"))
+
+
+@pytest.mark.skipif(not FMUCHECK.is_file(), reason=f"no FMU Compliance Checker at {FMUCHECK}")
+@pytest.mark.parametrize("preset", PRESETS)
+def test_fmu_compliance_checker_reports_no_warning_or_error(package_preset, preset, tmp_path):
+    """fmuCheck -k cs: the XML checks and a 0.1 s co-simulation at log level 3 (warnings);
+    the FMU and the checker must both report zero warnings and errors."""
+    path = package_preset(preset)
+    proc = subprocess.run(
+        [str(FMUCHECK), "-k", "cs", "-h", "1e-3", "-s", "0.1", "-l", "3", "-o", str(tmp_path / "out.csv"), "-t", str(tmp_path), str(path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    out = proc.stdout + proc.stderr
+    assert proc.returncode == 0, f"fmuCheck exited with {proc.returncode}:\n{out}"
+    assert "FMU check summary" in out, out
+    assert re.search(r"FMU reported:\s*0 warning\(s\) and error\(s\)", out), out
+    assert re.search(r"Checker reported:\s*0 Warning\(s\)\s*0 Error\(s\)", out), out
+    assert (tmp_path / "out.csv").stat().st_size > 0
 
 
 def test_archive_layout(fmu_path):
@@ -132,10 +158,14 @@ def test_contract_names_exist_with_their_causality(models, preset):
         assert m.vars[name].causality == causality, f"{preset}: {name} is {m.vars[name].causality}"
     for name in CONTRACT_INPUTS:
         assert m.vars[name].variability == "continuous" and m.vars[name].type == "Real"
-    # Enumeration-like parameters take 0/1.
-    for name in ["fidelity", "lubrication", "preload"]:
+    # The modes are Enumerations (a drop-down in importers), accessed as Integers.
+    for name, n_items in [("fidelity", 2), ("lubrication", 2), ("preload", 2), ("traction", 2), ("oil.piezoviscosity", 2), ("integrator", 3)]:
         v = m.vars[name]
-        assert v.type == "Integer" and int(v.min) == 0 and int(v.max) == 1
+        assert v.type == "Enumeration", f"{name} is {v.type}"
+        assert v.declaredType in m.md.typeDefinitions, name
+        items = v.declaredType.items
+        assert [int(i.value) for i in items] == list(range(n_items)), name
+        assert int(v.min) == 0 and int(v.max) == n_items - 1 and int(v.start) in range(n_items)
 
 
 @pytest.mark.parametrize("preset", ["TRB130x230", "32008"])
@@ -157,7 +187,7 @@ def test_model_description_matches_the_variable_table(models, preset):
     for name, (vr, row) in expected.items():
         v = m.vars[name]
         assert v.valueReference == vr, name
-        assert v.type == row["type"], name
+        assert v.type == ("Enumeration" if "enumeration" in row else row["type"]), name
         assert v.causality == row["causality"], name
         assert v.variability == row["variability"], name
         if "unit" in row:
@@ -186,6 +216,35 @@ def test_default_experiment_and_start_values(models):
         assert m.start("slices") == json.loads((REPO / "presets" / f"{preset}.json").read_text())["solver"]["slices"]
 
 
+def test_metadata_and_model_structure_a_strict_importer_reads(models):
+    """Generation date, copyright, license, a default tolerance; every output with explicit
+    dependencies: the integrator counters and roller azimuths on no input (a master may cut
+    an algebraic loop there), the physical outputs on the inputs (the quasi-static model is
+    algebraic in them); azimuths are discrete (they wrap at 2 pi)."""
+    import datetime
+
+    m = models(DEFAULT_PRESET)
+    md = m.md
+    datetime.datetime.strptime(md.generationDateAndTime, "%Y-%m-%dT%H:%M:%SZ")
+    assert "contributors" in md.copyright and "MIT" in md.license
+    assert md.defaultExperiment.tolerance is not None and float(md.defaultExperiment.tolerance) > 0
+    inputs = {n for n, v in m.vars.items() if v.causality == "input"}
+    parameters = {n for n, v in m.vars.items() if v.causality == "parameter"}
+    deps = {u.variable.name: {d.name for d in u.dependencies} for u in md.outputs}
+    init = {u.variable.name: {d.name for d in u.dependencies} for u in md.initialUnknowns}
+    assert set(deps) == set(init) == {n for n, v in m.vars.items() if v.causality == "output"}
+    for name in ["integrator.steps", "integrator.rhs", "integrator.rejected"]:
+        assert deps[name] == set() and init[name] == set(), name
+    for j in range(1, m.z + 1):
+        assert deps[f"roller[{j}].azimuth"] == set()
+        assert init[f"roller[{j}].azimuth"] == {"cage.angle0"}
+        assert m.vars[f"roller[{j}].azimuth"].variability == "discrete"
+    assert deps["cage.speed"] == {"speed"}
+    for name in ["frictionTorque", "cone.x", "reaction.Fx", "roller[1].tilt", "roller[1].skew", "solver.iterations"]:
+        assert deps[name] == inputs, name
+        assert init[name] == inputs | parameters, name
+
+
 @pytest.mark.parametrize("preset", PRESETS)
 def test_start_values_in_the_xml_are_the_instance_values(models, slaves, preset):
     """In initialization mode, every parameter and input reads back as its XML start value
@@ -194,7 +253,7 @@ def test_start_values_in_the_xml_are_the_instance_values(models, slaves, preset)
     fmu = slaves.new(m, name=f"start-{preset}")
     fmu.setupExperiment(startTime=0.0)
     fmu.enterInitializationMode()
-    getters = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Boolean": fmu.getBoolean}
+    getters = {"Real": fmu.getReal, "Integer": fmu.getInteger, "Enumeration": fmu.getInteger, "Boolean": fmu.getBoolean}
     mismatches = []
     for v in m.md.modelVariables:
         if v.causality not in ("parameter", "input"):
