@@ -33,8 +33,8 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
 ];
 
 /// Copyright and license of the FMU (the crate's `license`).
-pub const COPYRIGHT: &str = "Copyright (c) 2025-2026 tapered-roller-bearing contributors";
-pub const LICENSE: &str = "MIT License (see documentation/index.html)";
+pub const COPYRIGHT: &str = "Copyright (c) 2026 tapered-roller-bearing contributors";
+pub const LICENSE: &str = "MIT License (documentation/LICENSE.txt)";
 /// The source date of this build (`build.rs`: SOURCE_DATE_EPOCH, else the git commit time),
 /// so that equal sources give equal model descriptions and GUIDs.
 pub const GENERATION_DATE: &str = env!("TRB_SOURCE_DATE");
