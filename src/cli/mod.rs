@@ -14,6 +14,7 @@ use std::fmt;
 pub mod bench;
 pub mod demo;
 pub mod documentation;
+pub mod icon;
 pub mod package;
 pub mod paths;
 pub mod report;
