@@ -50,7 +50,6 @@ const OUTLINE_RGB: [u8; 3] = [0x23, 0x27, 0x2b];
 const AXIS_RGB: [u8; 3] = [0x1d, 0x3f, 0x75];
 
 /// The PNG icon (SIZE x SIZE, transparent background) of `bearing`.
-#[cfg_attr(not(test), allow(dead_code))] // until `package` writes model.png
 pub fn model_png(bearing: &Bearing) -> Vec<u8> {
     let section = Section::new(bearing);
     render(&section).encode_png().expect("PNG encoding into memory does not fail")

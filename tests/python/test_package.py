@@ -73,8 +73,16 @@ def test_archive_layout(fmu_path):
         f"binaries/linux64/{MODEL_IDENTIFIER}.so",
         "resources/bearing.json",
         "documentation/index.html",
+        "documentation/LICENSE.txt",
+        "model.png",
     ]:
         assert required in names, f"{required} missing from {fmu_path}: {sorted(names)}"
+    with zipfile.ZipFile(fmu_path) as z:
+        icon = z.read("model.png")
+        assert "MIT License" in z.read("documentation/LICENSE.txt").decode()
+    # a PNG (signature, IHDR first) of 256 x 256 pixels
+    assert icon[:8] == b"\x89PNG\r\n\x1a\n" and icon[12:16] == b"IHDR"
+    assert int.from_bytes(icon[16:20], "big") == 256 and int.from_bytes(icon[20:24], "big") == 256
     assert not any("\\" in n for n in names)
 
 
