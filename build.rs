@@ -222,7 +222,10 @@ fn write_fastmath_tables() {
     let row = |name: &str, n: usize, f: &dyn Fn(usize) -> f64| {
         let vals: Vec<String> = (0..n).map(|j| format!("{:?}", f(j))).collect();
         // the tables hold values such as sqrt(2) exactly where clippy expects the named constant
-        format!("#[allow(clippy::approx_constant)]\nconst {name}: [f64; {n}] = [{}];\n", vals.join(", "))
+        format!(
+            "#[allow(clippy::approx_constant)]\nconst {name}: [f64; {n}] = [{}];\n",
+            vals.join(", ")
+        )
     };
     t += &row("LN_C", 128, &|j| (j as f64 / 128.0).ln_1p());
     t += &row("INV_C", 128, &|j| 1.0 / (1.0 + j as f64 / 128.0));

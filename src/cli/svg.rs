@@ -241,6 +241,30 @@ pub fn chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x
 
 /// Polar chart of per-roller values: each series is (azimuth rad, value >= 0) with azimuth 0
 /// at the top (the direction of Fy) and increasing clockwise; bars from the centre.
+/// Charts of this module one above the other in one SVG document (each keeps its own
+/// coordinates inside a nested `<svg>` placed at its offset).
+pub fn stack(charts: &[String]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{}" viewBox="0 0 {W} {}">"#,
+        H * charts.len() as f64,
+        H * charts.len() as f64
+    );
+    for (k, chart) in charts.iter().enumerate() {
+        // the chart's own root element, re-opened at its place (xmlns only on the outer one)
+        let inner = chart.replacen(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"",
+            &format!(r#"<svg y="{}""#, H * k as f64),
+            1,
+        );
+        out.push_str(inner.trim_end());
+        out.push('\n');
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
 pub fn polar_chart(title: &str, unit: &str, series: &[Series]) -> String {
     let vmax = series
         .iter()

@@ -76,3 +76,12 @@ def test_demo_runs_and_prints_a_table(tmp_path):
     assert len(rows) == 201 and header[0] == "time"
     assert "frictionTorque" in header and "Qo.max" in header
     assert "torque" in proc.stdout and "TaperedRollerBearing.fmu" in proc.stdout
+    # Part 2: the [W25] reference case in the dynamic model, 50 ms, with an SVG of skew and tilt.
+    header, rows = read_csv(tmp_path / "demo_dynamic.csv")
+    assert len(rows) == 101 and rows[-1][0] >= 0.05
+    col = {name: i for i, name in enumerate(header)}
+    assert max(r[col["integrator.steps"]] for r in rows) > 100, "the dynamic model integrated"
+    assert all(r[col["frictionTorque"]] > 0 for r in rows)
+    svg = (tmp_path / "demo_dynamic.svg").read_text()
+    assert svg.startswith("<svg") and "Roller skew" in svg and "Roller tilt" in svg
+    assert "skew.max [deg]" in proc.stdout and "wall time" in proc.stdout
