@@ -215,6 +215,22 @@ fn malformed_bearing_files_are_rejected_naming_the_field() {
     assert!(stderr(&o).contains("NO-SUCH-BEARING"));
 }
 
+/// `--portable` cross-builds (tests/portable checks its FMU); here only what it refuses before
+/// building anything: a bad bearing, and `--library` (the portable FMU builds its own).
+#[test]
+fn fmu_portable_refuses_a_bad_bearing_and_library_before_building() {
+    let s = Scratch::new("fmuportable");
+    let out = s.path("p.fmu");
+    let o = trb(&["fmu", "--portable", "--bearing", "NO-SUCH-BEARING", "--out", p(&out)]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("NO-SUCH-BEARING"), "{}", stderr(&o));
+    let lib = fake_library(&s);
+    let o = trb(&["fmu", "--portable", "--library", p(&lib), "--out", p(&out)]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--library"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
 const SMALL: &str = r#"{
   "description": "test: a short ramp",
   "bearing": "TRB130x230",

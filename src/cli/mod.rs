@@ -6,7 +6,9 @@
 //! [`Command`] and its arm in [`run`]. Nothing else needs to change.
 //!
 //! Exit codes: 0 success, 1 the model or the file system failed while running, 2 the request
-//! was invalid (command line, scenario file, bearing file), as clap does for usage errors.
+//! was invalid (command line, scenario file, bearing file), as clap does for usage errors, 3 an
+//! external tool the command needs is missing (`fmu --portable`: the message names each one and
+//! how to install it).
 
 use clap::{Parser, Subcommand};
 use std::fmt;
@@ -17,6 +19,7 @@ pub mod documentation;
 pub mod icon;
 pub mod package;
 pub mod paths;
+pub mod portable;
 pub mod report;
 pub mod scenario;
 pub mod simulate;
@@ -73,6 +76,14 @@ impl CliError {
     pub fn invalid(message: impl Into<String>) -> CliError {
         CliError {
             code: 2,
+            message: message.into(),
+        }
+    }
+
+    /// An external program the command needs is not installed: exit code 3.
+    pub fn missing_tool(message: impl Into<String>) -> CliError {
+        CliError {
+            code: 3,
             message: message.into(),
         }
     }
