@@ -8,9 +8,12 @@
 #    tests/python/requirements.txt changed (its hash is kept in .venv);
 # 2. cargo test --release (all Rust unit and integration tests);
 # 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu), then its leak check
-#    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh);
+#    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh); then the
+#    portable FMU (cargo run --release -- fmu --portable, tools by scripts/cross-setup.sh) and
+#    its tests (tests/portable: glibc 2.17, the win64 DLL under wine against linux64);
 # 4. pytest tests/python.
-# Needs only Rust (cargo), Python 3.11 with pip (and venv), and a C toolchain for cargo.
+# Needs only Rust (cargo), Python 3.11 with pip (and venv), and a C toolchain for cargo; the
+# portable FMU's tools are installed by scripts/cross-setup.sh (Debian packages only as root).
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -96,6 +99,31 @@ end "leak check (valgrind)"
 begin "fuzz (stable driver, 2 x 10 s)"
 ./scripts/fuzz.sh 10 || fail "scripts/fuzz.sh (crash input in fuzz/artifacts/)"
 end "fuzz (stable driver)"
+
+# --- 3c. The portable FMU: linux64 for glibc >= 2.17 and win64 (issue 15) -------------------------
+# Tools by scripts/cross-setup.sh (PyPI pins into .venv-cross; Debian packages when root). A
+# tool that cannot be installed here skips the build and its tests, saying which; the rest runs.
+PORTABLE_FMU="target/fmu-portable/TaperedRollerBearing.fmu"
+begin "cross tools (scripts/cross-setup.sh)"
+./scripts/cross-setup.sh || fail "scripts/cross-setup.sh"
+end "cross tools (apt, pip)"
+
+begin "cargo run --release -- fmu --portable"
+rm -f "$PORTABLE_FMU"
+portable_status=0
+cargo run --release --quiet -- fmu --portable --out "$PORTABLE_FMU" || portable_status=$?
+if [ "$portable_status" = 3 ]; then
+    echo "SKIPPED: the portable FMU needs the tools named above; its tests are skipped too"
+    end "fmu --portable (SKIPPED: tools)"
+elif [ "$portable_status" != 0 ]; then
+    fail "cargo run --release -- fmu --portable (exit $portable_status)"
+else
+    end "cargo run --release -- fmu --portable"
+    begin "pytest tests/portable (glibc, wine)"
+    PORTABLE_FMU="$PORTABLE_FMU" "$VENV/bin/python" -m pytest tests/portable -q -s -rs -p no:cacheprovider ||
+        fail "pytest tests/portable"
+    end "pytest tests/portable (glibc, wine)"
+fi
 
 # --- 4. Python harness ---------------------------------------------------------------------------
 if [ -x "$ROOT/../shared/tools/fmuCheck.linux64" ] || [ -n "${TRB_FMUCHECK:-}" ]; then
