@@ -423,3 +423,20 @@ def test_win64_under_wine_matches_linux64(wine_runs, fidelity):
 def test_win64_under_wine_matches_linux64_dynamic_to_1e_12(wine_runs):
     r = wine_runs(1)
     assert r["worst"] <= REL_TOL, f"fidelity 1: {r['worst']:.3g} relative: {r['where']}"
+
+
+# ------------------------------------------------------------------------------------------------
+# The archive as an importer sees it
+# ------------------------------------------------------------------------------------------------
+
+def test_fmpy_validates_and_runs_the_portable_fmu(fmu):
+    fmpy = pytest.importorskip("fmpy")
+    from fmpy.validation import validate_fmu
+
+    assert validate_fmu(str(fmu)) == []
+    with zipfile.ZipFile(fmu) as z:
+        binaries = sorted(n for n in z.namelist() if n.startswith("binaries/"))
+    assert binaries == [SO, DLL], binaries
+    result = fmpy.simulate_fmu(str(fmu), stop_time=0.01, output_interval=1e-3,
+                               start_values={"Fy": 10e3, "xi": 7e-5}, output=["frictionTorque", "Qo.max"])
+    assert len(result) == 11 and result["frictionTorque"][-1] > 0 and result["Qo.max"][-1] > 0
