@@ -82,6 +82,8 @@ fn fmu_holds_exactly_the_required_entries_and_the_guid_of_its_bearing() {
         "binaries/linux64/TaperedRollerBearing.so",
         "resources/bearing.json",
         "documentation/index.html",
+        "documentation/LICENSE.txt",
+        "model.png",
     ]
     .iter()
     .map(|s| s.to_string())
