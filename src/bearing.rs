@@ -542,7 +542,7 @@ impl BearingFile {
             }
         }
         // Roller diameters: mean, or large end, or both ends.
-        let tan_h = half.tan();
+        let tan_h = libm::tan(half);
         let r = &self.rollers;
         let mean_d = match (r.mean_diameter_mm, r.large_end_diameter_mm, r.small_end_diameter_mm) {
             (Some(m), None, None) => positive("rollers.mean_diameter_mm", m)? * MM,
@@ -554,7 +554,7 @@ impl BearingFile {
                 if s > l {
                     return Err(err("rollers.small_end_diameter_mm", "exceeds the large-end diameter"));
                 }
-                let implied = ((l - s) / (2.0 * length)).atan();
+                let implied = libm::atan((l - s) / (2.0 * length));
                 if (implied - half).abs() > 0.05_f64.to_radians() {
                     return Err(err(
                         "rollers.small_end_diameter_mm",
@@ -587,7 +587,7 @@ impl BearingFile {
         let axis = cone + half;
         // The roller must fit axially inside the bearing width (a cylindrical roller of any
         // length passes the radial check below; 1e308 mm gave non-finite outputs).
-        let axial_extent = length * axis.cos() + mean_d * axis.sin();
+        let axial_extent = length * libm::cos(axis) + mean_d * libm::sin(axis);
         if axial_extent > width {
             return Err(err(
                 "rollers.length_mm",
@@ -601,7 +601,7 @@ impl BearingFile {
             ));
         }
         // The roller must fit radially inside the envelope and the rollers on the pitch circle.
-        let radial_extent = 0.5 * mean_d * axis.cos() + 0.5 * length * axis.sin();
+        let radial_extent = 0.5 * mean_d * libm::cos(axis) + 0.5 * length * libm::sin(axis);
         if 0.5 * dm - radial_extent <= 0.5 * bore || 0.5 * dm + radial_extent >= 0.5 * od {
             return Err(err(
                 "rollers.mean_diameter_mm",
@@ -656,7 +656,7 @@ impl BearingFile {
         // Distance of the flange contact from the bearing axis for end radius rs (the rib
         // normal n_f = (sin af, -cos af), sphere centre on the roller axis at rs from the end):
         // r_f = dm/2 + (l/2) sin(axis) + rs (cos af - sin(axis)).
-        let rib_radius = |af: f64, rs: f64| 0.5 * dm + 0.5 * length * axis.sin() + rs * (af.cos() - axis.sin());
+        let rib_radius = |af: f64, rs: f64| 0.5 * dm + 0.5 * length * libm::sin(axis) + rs * (libm::cos(af) - libm::sin(axis));
         let end_radius = match (flange_angle, r.end_radius_mm) {
             (None, _) => 0.0,
             (Some(_), Some(rs)) => positive("rollers.end_radius_mm", rs)? * MM,
@@ -664,14 +664,14 @@ impl BearingFile {
                 // Default: R_s = 0.9 of the rib's circumferential radius of curvature
                 // rho_p = r_f / cos(af), the middle of the 0.85 .. 0.95 rho_p design range.
                 // r_f is linear in R_s, so R_s = 0.9 r_f(R_s) / cos(af) is solved directly.
-                let c = 0.9 / af.cos();
+                let c = 0.9 / libm::cos(af);
                 let r0 = rib_radius(af, 0.0);
-                let slope = af.cos() - axis.sin();
+                let slope = libm::cos(af) - libm::sin(axis);
                 c * r0 / (1.0 - c * slope)
             }
         };
         if let Some(af) = flange_angle {
-            let rho_p = rib_radius(af, end_radius) / af.cos();
+            let rho_p = rib_radius(af, end_radius) / libm::cos(af);
             if end_radius > 1.05 * rho_p {
                 return Err(err(
                     "rollers.end_radius_mm",
@@ -686,7 +686,7 @@ impl BearingFile {
         if let Some(af) = flange_angle {
             // The flange contact point must lie on the roller end face, on the cone side.
             let offset = af - (PI / 2.0 - axis);
-            let h = end_radius * offset.sin();
+            let h = end_radius * libm::sin(offset);
             if offset <= 0.0 || h >= large_r {
                 return Err(err(
                     "flange",

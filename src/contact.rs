@@ -16,7 +16,7 @@ pub fn effective_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
 /// Palmgren's roller stiffness in SI: Q = K delta^(10/9) with K = 8.06e4 l^(8/9) in N and mm,
 /// i.e. 8.06e4 * 1000^(8/9 + 10/9) = 8.06e10 l^(8/9) with l and delta in metres.
 pub fn palmgren_roller_stiffness(length: f64) -> f64 {
-    8.06e10 * length.powf(8.0 / 9.0)
+    8.06e10 * libm::pow(length, 8.0 / 9.0)
 }
 
 /// Where the Johnson law stops being trusted: ln(8 R / delta) - 1 >= 3, i.e. delta <= 8 R e^-4
@@ -37,7 +37,7 @@ impl LineLaw {
     pub fn johnson(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
         LineLaw::Johnson {
             c: PI * slice_len * e_prime,
-            ln_8r: r_bar.iter().map(|r| (8.0 * r).ln()).collect(),
+            ln_8r: r_bar.iter().map(|r| libm::log(8.0 * r)).collect(),
         }
     }
 
@@ -66,7 +66,7 @@ impl LineLaw {
             return 0.0;
         }
         match self {
-            LineLaw::Palmgren { k: kp } => (q / kp).powf(0.9),
+            LineLaw::Palmgren { k: kp } => libm::pow(q / kp, 0.9),
             LineLaw::Johnson { .. } => {
                 // Monotone: Newton from a power-law estimate, safeguarded by bisection.
                 let (mut lo, mut hi) = (0.0_f64, 1e-6_f64);
@@ -120,7 +120,7 @@ pub fn johnson(c: f64, ln_8r: f64, delta: f64) -> (f64, f64, bool) {
         (c * delta * inv, c * lg * inv * inv, false)
     } else {
         // Linear continuation from the edge of validity (C1).
-        let d0 = (ln_8r - (JOHNSON_LOG_FLOOR + 1.0)).exp();
+        let d0 = libm::exp(ln_8r - (JOHNSON_LOG_FLOOR + 1.0));
         let den0 = JOHNSON_LOG_FLOOR;
         let q0 = c * d0 / den0;
         let k0 = c * (den0 + 1.0) / (den0 * den0);
@@ -209,16 +209,16 @@ impl PointContact {
             rx,
             ry,
             e_prime,
-            1.0339 * ratio.powf(0.6360),
+            1.0339 * libm::pow(ratio, 0.6360),
             1.0003 + 0.5968 / ratio,
-            1.5277 + 0.6023 * ratio.ln(),
+            1.5277 + 0.6023 * libm::log(ratio),
         )
     }
 
     fn from_constants(rx: f64, ry: f64, e_prime: f64, k: f64, e_int: f64, f_int: f64) -> PointContact {
         let r = 1.0 / (1.0 / rx + 1.0 / ry);
         // delta = F [ 9/(2 E R) (Q/(pi k E'))^2 ]^(1/3)  =>  Q = pi k E' sqrt(2 E R / 9) (delta/F)^(3/2)
-        let stiffness = PI * k * e_prime * (2.0 * e_int * r / 9.0).sqrt() / f_int.powf(1.5);
+        let stiffness = PI * k * e_prime * (2.0 * e_int * r / 9.0).sqrt() / libm::pow(f_int, 1.5);
         PointContact {
             rx,
             ry,
@@ -246,8 +246,8 @@ impl PointContact {
         if q <= 0.0 {
             return (0.0, 0.0, 0.0);
         }
-        let a = (6.0 * self.k * self.k * self.e_int * self.r * q / (PI * self.e_prime)).cbrt();
-        let b = (6.0 * self.e_int * self.r * q / (PI * self.k * self.e_prime)).cbrt();
+        let a = libm::cbrt(6.0 * self.k * self.k * self.e_int * self.r * q / (PI * self.e_prime));
+        let b = libm::cbrt(6.0 * self.e_int * self.r * q / (PI * self.k * self.e_prime));
         let p_max = 1.5 * q / (PI * a * b);
         (a, b, p_max)
     }

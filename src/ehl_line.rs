@@ -261,7 +261,7 @@ struct Viscosity {
 
 impl Viscosity {
     fn new(op: &Operating, p_h: f64) -> Viscosity {
-        let ln_eta_967 = op.eta0.ln() + 9.67;
+        let ln_eta_967 = libm::log(op.eta0) + 9.67;
         Viscosity {
             model: op.viscosity,
             alpha_ph: op.alpha * p_h,
@@ -275,13 +275,13 @@ impl Viscosity {
     fn eta_bar(&self, pd: f64, s: f64) -> (f64, f64) {
         let pd = pd.max(0.0);
         match self.model {
-            ViscosityModel::Barus => ((s * self.alpha_ph * pd).exp(), s * self.alpha_ph),
+            ViscosityModel::Barus => (libm::exp(s * self.alpha_ph * pd), s * self.alpha_ph),
             ViscosityModel::Roelands => {
                 let base = 1.0 + self.c_ph * pd;
-                let pz = base.powf(self.z);
+                let pz = libm::pow(base, self.z);
                 let expo = s * self.ln_eta_967 * (pz - 1.0);
                 let dexpo = s * self.ln_eta_967 * self.z * pz / base * self.c_ph;
-                (expo.exp(), dexpo)
+                (libm::exp(expo), dexpo)
             }
         }
     }
@@ -302,14 +302,14 @@ fn f1(t: f64) -> f64 {
     if t == 0.0 {
         0.0
     } else {
-        t * t.abs().ln() - t
+        t * libm::log(t.abs()) - t
     }
 }
 fn f2(t: f64) -> f64 {
     if t == 0.0 {
         0.0
     } else {
-        0.5 * t * t * t.abs().ln() - 0.25 * t * t
+        0.5 * t * t * libm::log(t.abs()) - 0.25 * t * t
     }
 }
 
@@ -345,7 +345,7 @@ fn kernel_slope_midpoints(x: &[f64]) -> DMatrix<f64> {
             let (a, c) = (x[e], x[e + 1]);
             let (ta, tc) = (a - xm, c - xm);
             // int dt/(-t) and int t dt/(-t) over [ta, tc] (principal value across t = 0)
-            let j0 = -(tc.abs().ln() - ta.abs().ln());
+            let j0 = -(libm::log(tc.abs()) - libm::log(ta.abs()));
             let j1 = -(tc - ta);
             let len = c - a;
             let rise = (j1 + (xm - a) * j0) / len;
@@ -808,7 +808,7 @@ pub mod closed_forms {
         let u = eta0 * u_e / (e_prime * r);
         let g = alpha * e_prime;
         let wd = w / (e_prime * r);
-        r * 2.65 * u.powf(0.70) * g.powf(0.54) * wd.powf(-0.13)
+        r * 2.65 * libm::pow(u, 0.70) * libm::pow(g, 0.54) * libm::pow(wd, -0.13)
     }
 
     /// Dowson & Toyoda (1979) central film of a line contact,
@@ -817,7 +817,7 @@ pub mod closed_forms {
         let u = eta0 * u_e / (e_prime * r);
         let g = alpha * e_prime;
         let wd = w / (e_prime * r);
-        r * 3.06 * u.powf(0.69) * g.powf(0.56) * wd.powf(-0.10)
+        r * 3.06 * libm::pow(u, 0.69) * libm::pow(g, 0.56) * libm::pow(wd, -0.10)
     }
 
     /// Pan & Hamrock (1989) minimum film of a line contact, h_min/R = 1.714 U^0.694 G^0.568 W^-0.128
@@ -827,7 +827,7 @@ pub mod closed_forms {
         let u = eta0 * u_e / (e_prime * r);
         let g = alpha * e_prime;
         let wd = w / (e_prime * r);
-        r * 1.714 * u.powf(0.694) * g.powf(0.568) * wd.powf(-0.128)
+        r * 1.714 * libm::pow(u, 0.694) * libm::pow(g, 0.568) * libm::pow(wd, -0.128)
     }
 
     /// Zhou & Hoeprich (1991, J. Tribol. 113, 590-597, eq. 17 and 43-44) isothermal rolling
@@ -837,7 +837,7 @@ pub mod closed_forms {
     pub fn zhou_hoeprich(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r: f64, w: f64) -> f64 {
         let gu = alpha * eta0 * u_e / r;
         let wd = w / (e_prime * r);
-        29.2 * r / alpha * gu.powf(0.648) * wd.powf(0.246)
+        29.2 * r / alpha * libm::pow(gu, 0.648) * libm::pow(wd, 0.246)
     }
 
     /// Goksem & Hargreaves (1978) isothermal rolling traction of a line contact, one surface,
@@ -851,8 +851,8 @@ pub mod closed_forms {
         let u = eta0 * u_e / (e_prime * r);
         let g = alpha * e_prime;
         let wd = w / (e_prime * r);
-        let d = 11.812_207_46 * g * u / wd.powf(1.5);
-        let k = (0.658_228 * d.ln() - 0.162_625).exp();
+        let d = 11.812_207_46 * g * u / libm::pow(wd, 1.5);
+        let k = libm::exp(0.658_228 * libm::log(d) - 0.162_625);
         k * wd * r / alpha
     }
 
@@ -862,7 +862,7 @@ pub mod closed_forms {
     /// quoted for line contacts in Part 2 (Proc. IMechE J 224, 2010, section 3.2).
     pub fn biboulet_houpert_ehl(eta0: f64, e_prime: f64, u_e: f64, r: f64) -> f64 {
         let u2 = 2.0 * eta0 * u_e / (e_prime * r);
-        1.47 * e_prime * r * u2.powf(0.75)
+        1.47 * e_prime * r * libm::pow(u2, 0.75)
     }
 }
 

@@ -43,7 +43,7 @@ pub fn ln(x: f64) -> f64 {
 #[cold]
 #[inline(never)]
 fn ln_outside(x: f64) -> f64 {
-    x.ln()
+    libm::log(x)
 }
 
 /// ln(1 + u) = u - u^2/2 + u^3/3 - ... for |u| < 1/128: to u^10 the error is < 1e-21 u.
@@ -83,7 +83,7 @@ pub fn exp(y: f64) -> f64 {
 #[cold]
 #[inline(never)]
 fn exp_outside(y: f64) -> f64 {
-    y.exp()
+    libm::exp(y)
 }
 
 /// x^p for positive, finite x (exp(p ln x); relative error about |p ln x| ulp).

@@ -111,13 +111,13 @@ impl Geometry {
         let ah = b.roller_half_angle;
         let ar = b.roller_axis_angle();
         let center = [0.0, 0.5 * b.pitch_diameter];
-        let axis = [ar.cos(), -ar.sin()];
-        let perp = [ar.sin(), ar.cos()];
+        let axis = [libm::cos(ar), -libm::sin(ar)];
+        let perp = [libm::sin(ar), libm::cos(ar)];
         let l = b.roller_length;
         let rm = b.roller_mean_radius();
         let slice_len = l / s as f64;
         let slice_s: Vec<f64> = (0..s).map(|k| -0.5 * l + (k as f64 + 0.5) * slice_len).collect();
-        let slice_radius: Vec<f64> = slice_s.iter().map(|&x| rm - x * ah.tan()).collect();
+        let slice_radius: Vec<f64> = slice_s.iter().map(|&x| rm - x * libm::tan(ah)).collect();
         let crown: Vec<f64> = slice_s.iter().map(|&x| p.crown_drop * (2.0 * x / l).powi(2)).collect();
         let e_prime = contact::effective_modulus(b.roller_material.e, b.roller_material.nu, b.ring_material.e, b.ring_material.nu);
 
@@ -142,8 +142,8 @@ impl Geometry {
             let raceway_curvature_radius: Vec<f64> = raceway_radius
                 .iter()
                 .map(|&r| {
-                    if race_angle.cos() > 0.0 {
-                        (if convex { 1.0 } else { -1.0 }) * r / race_angle.cos()
+                    if libm::cos(race_angle) > 0.0 {
+                        (if convex { 1.0 } else { -1.0 }) * r / libm::cos(race_angle)
                     } else {
                         f64::INFINITY
                     }
@@ -152,7 +152,7 @@ impl Geometry {
             let r_bar: Vec<f64> = slice_radius
                 .iter()
                 .zip(&raceway_curvature_radius)
-                .map(|(&rr, &rc)| 1.0 / (ah.cos() / rr + 1.0 / rc))
+                .map(|(&rr, &rc)| 1.0 / (libm::cos(ah) / rr + 1.0 / rc))
                 .collect();
             let law = match b.contact_law {
                 ContactLaw::Johnson => contact::LineLaw::johnson(e_prime, slice_len, &r_bar),
@@ -168,12 +168,12 @@ impl Geometry {
                 law,
             }
         };
-        let cone = make_line(surface(-1.0), [ai.sin(), ai.cos()], ai, true);
-        let cup = make_line(surface(1.0), [-ao.sin(), -ao.cos()], ao, false);
+        let cone = make_line(surface(-1.0), [libm::sin(ai), libm::cos(ai)], ai, true);
+        let cup = make_line(surface(1.0), [-libm::sin(ao), -libm::cos(ao)], ao, false);
 
         let flange = b.flange_angle.map(|af| {
             let rs = b.roller_end_radius;
-            let n = [af.sin(), -af.cos()];
+            let n = [libm::sin(af), -libm::cos(af)];
             let sphere_center = [center[0] + (-0.5 * l + rs) * axis[0], center[1] + (-0.5 * l + rs) * axis[1]];
             let point = [sphere_center[0] - rs * n[0], sphere_center[1] - rs * n[1]];
             let rel = [point[0] - center[0], point[1] - center[1]];
@@ -185,7 +185,7 @@ impl Geometry {
             // 1.0003) would make the contact conformal; the relative curvature is floored at
             // 1 % of the sphere's (ellipse radius ratio <= 100, the Hamrock-Brewe range).
             let r_meridian = rs;
-            let kappa = (1.0 / rs - af.cos() / rib_radius).max(MIN_RELATIVE_CURVATURE / rs);
+            let kappa = (1.0 / rs - libm::cos(af) / rib_radius).max(MIN_RELATIVE_CURVATURE / rs);
             let r_circ = 1.0 / kappa;
             let e_f = contact::effective_modulus(b.roller_material.e, b.roller_material.nu, b.ring_material.e, b.ring_material.nu);
             FlangeContact {
@@ -199,7 +199,7 @@ impl Geometry {
         });
 
         let (roller_mass, inertia_axial, inertia_transverse, cm_offset) =
-            frustum_mass_properties(rm, ah.tan(), l, b.roller_material.density);
+            frustum_mass_properties(rm, libm::tan(ah), l, b.roller_material.density);
 
         Geometry {
             z: b.roller_count,

@@ -76,8 +76,8 @@ impl ShortJournal {
             };
         }
         // positive-pressure arc |gamma - gamma0| < beta: cos(beta) = -eps_dot eps / r
-        let beta = (-eps_dot * eps / r).clamp(-1.0, 1.0).acos();
-        let (sb, cb) = beta.sin_cos();
+        let beta = libm::acos((-eps_dot * eps / r).clamp(-1.0, 1.0));
+        let (sb, cb) = libm::sincos(beta);
         let j0 = 2.0 * (sb - beta * cb);
         let j1 = beta - sb * cb;
         let k = self.eta0 * self.radius * self.width.powi(3) / (c * c);

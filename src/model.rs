@@ -281,7 +281,7 @@ impl Parameters {
 /// Mass of the cone ring: steel annulus between the bore and the mid-roller cone contact
 /// radius, over the bearing width (a documented default; add the shaft's share as needed).
 pub fn default_cone_mass(b: &Bearing) -> f64 {
-    let ri = 0.5 * b.pitch_diameter - b.roller_mean_radius() * (b.roller_axis_angle()).cos();
+    let ri = 0.5 * b.pitch_diameter - b.roller_mean_radius() * libm::cos(b.roller_axis_angle());
     let ro = ri.max(0.5 * b.bore * 1.05);
     let ring = std::f64::consts::PI * (ro * ro - 0.25 * b.bore * b.bore) * b.width;
     (ring * b.ring_material.density).max(1e-3)

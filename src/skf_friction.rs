@@ -183,7 +183,7 @@ pub fn trb_series(series: &str) -> Option<&'static TrbSeries> {
 /// `Y = 0,4 cot α` of a single-row tapered roller bearing with contact (cup) angle α
 /// [rad] (ISO 281).
 pub fn iso281_y(contact_angle: f64) -> f64 {
-    0.4 / contact_angle.tan()
+    0.4 / libm::tan(contact_angle)
 }
 
 /// Kinematic viscosity [m²/s] of an oil of dynamic viscosity `eta0` [Pa·s] and density
@@ -308,17 +308,17 @@ pub fn rpm(omega: f64) -> f64 {
 
 /// `φ_ish` from catalogue units (n [r/min], d_m [mm], ν [mm²/s]).
 fn phi_ish(n: f64, dm: f64, nu: f64) -> f64 {
-    1.0 / (1.0 + 1.84e-9 * (n * dm).powf(1.28) * nu.powf(0.64))
+    1.0 / (1.0 + 1.84e-9 * libm::pow(n * dm, 1.28) * libm::pow(nu, 0.64))
 }
 
 /// `φ_rs` from catalogue units (d, D [mm]).
 fn phi_rs(k_rs: f64, nu: f64, n: f64, d: f64, big_d: f64, k_z: f64) -> f64 {
-    (-k_rs * nu * n * (d + big_d) * (k_z / (2.0 * (big_d - d))).sqrt()).exp()
+    libm::exp(-k_rs * nu * n * (d + big_d) * (k_z / (2.0 * (big_d - d))).sqrt())
 }
 
 /// `φ_bl` from catalogue units.
 fn phi_bl(n: f64, nu: f64, dm: f64) -> f64 {
-    (-2.6e-8 * (n * nu).powf(1.4) * dm).exp()
+    libm::exp(-2.6e-8 * libm::pow(n * nu, 1.4) * dm)
 }
 
 /// SKF frictional moment of `bearing` at shaft speed `omega` [rad/s] (sign ignored) under a
@@ -333,9 +333,9 @@ pub fn frictional_moment(bearing: &SkfTrb, lub: &Lubrication, omega: f64, fr: f6
     let (fr, fa) = (fr.abs(), fa.abs());
     let c = &bearing.series;
 
-    let g_rr = c.r1 * dm.powf(2.38) * (fr + c.r2 * bearing.y * fa).powf(0.31);
-    let g_sl = c.s1 * dm.powf(0.82) * (fr + c.s2 * bearing.y * fa);
-    let m_rr = g_rr * (nu * n).powf(0.6);
+    let g_rr = c.r1 * libm::pow(dm, 2.38) * libm::pow(fr + c.r2 * bearing.y * fa, 0.31);
+    let g_sl = c.s1 * libm::pow(dm, 0.82) * (fr + c.s2 * bearing.y * fa);
+    let m_rr = g_rr * libm::pow(nu * n, 0.6);
     let ish = phi_ish(n, dm, nu);
     let rs = phi_rs(lub.k_rs, nu, n, d, big_d, bearing.k_z);
     let bl = phi_bl(n, nu, dm);

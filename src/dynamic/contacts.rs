@@ -175,7 +175,7 @@ impl Constants {
         let cage_ratio = ri / (ri + ro);
         let spin_ratio = -cage_ratio * ro / g.mean_radius;
         let cm = g.cm_offset;
-        let cos_h = g.half_angle.cos();
+        let cos_h = libm::cos(g.half_angle);
         let flange = g.flange.as_ref().map(|f| FlangeConst {
             reference: f.point,
             normal: f.normal,
@@ -211,7 +211,7 @@ impl Constants {
             cone: LineConst::new(&g.cone, p, g.e_prime, g.slice_len),
             cup: LineConst::new(&g.cup, p, g.e_prime, g.slice_len),
             flange,
-            cos_o: g.cup_angle.cos(),
+            cos_o: libm::cos(g.cup_angle),
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
@@ -220,17 +220,17 @@ impl Constants {
             damping_factor: 2.0 * p.contact_damping * (g.roller_mass / g.slices as f64).sqrt(),
             ln_eta0_967: fm::ln(p.eta0) + 9.67,
             ln_full_film: if p.roughness > 0.0 {
-                (1.5 * p.roughness).ln()
+                libm::log(1.5 * p.roughness)
             } else {
                 f64::NEG_INFINITY
             },
-            ln_eyring: tr::EYRING_STRESS.ln(),
+            ln_eyring: libm::log(tr::EYRING_STRESS),
             e_prime: g.e_prime,
             eta0: p.eta0,
             viscosity: tr::ViscosityTable::new(p.eta0),
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
-            ln_inlet_heating: (p.oil_beta * p.eta0 / p.oil_conductivity).ln(),
+            ln_inlet_heating: libm::log(p.oil_beta * p.eta0 / p.oil_conductivity),
             rolling_resistance: p.lubrication != Lubrication::Dry && p.alpha > 0.0,
             alpha: p.alpha,
             sigma: p.roughness,
@@ -289,10 +289,10 @@ pub(crate) fn cage_angle(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
     let (mut sx, mut sy) = (0.0, 0.0);
     for j in 0..g.z {
         let psi = y[ROLLERS + PER_ROLLER * j + 2] - TAU * j as f64 / g.z as f64;
-        sx += psi.cos();
-        sy += psi.sin();
+        sx += libm::cos(psi);
+        sy += libm::sin(psi);
     }
-    sy.atan2(sx)
+    libm::atan2(sy, sx)
 }
 
 /// Cage angular speed for the state `y`.
@@ -327,13 +327,13 @@ fn roller_pose(g: &Geometry, c: &Constants, y: &[f64], j: usize) -> RollerPose {
     let (x, dr, psi) = (y[o], y[o + 1], y[o + 2]);
     let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
     let (tilt, skew) = (y[o + 6], y[o + 7]);
-    let (sp, cp) = psi.sin_cos();
+    let (sp, cp) = libm::sincos(psi);
     let e_r = V3::new(0.0, cp, sp);
     let e_t = V3::new(0.0, -sp, cp);
     let r = c.pitch_radius + dr;
-    let (sb, cb) = (g.axis_angle - tilt).sin_cos();
+    let (sb, cb) = libm::sincos(g.axis_angle - tilt);
     let u = V3::x() * cb - e_r * sb;
-    let (sf, cf) = skew.sin_cos();
+    let (sf, cf) = libm::sincos(skew);
     RollerPose {
         e_r,
         e_t,
@@ -723,7 +723,7 @@ pub(crate) fn evaluate(
         let cup_sum = if c.lobes > 0 {
             race_slices(c, &cup, dd, |q: &V3| {
                 let nl = c.lobes as f64;
-                let (sl, cl) = (nl * q[2].atan2(q[1])).sin_cos();
+                let (sl, cl) = libm::sincos(nl * libm::atan2(q[2], q[1]));
                 let lobe = 0.5 * c.waveform * (1.0 - cl);
                 let lobe_psi = 0.5 * c.waveform * nl * sl;
                 (-(c.half_clearance + lobe) * c.cos_o, -lobe_psi * c.cos_o)
@@ -823,7 +823,7 @@ pub(crate) fn evaluate(
         // the wall side, so the sums over slices reduce to eight scalar sums per roller and a
         // few cross products (the same forces as slice by slice).
         let psi_p = cage_psi + TAU * j as f64 / z as f64;
-        let (spp, cpp) = psi_p.sin_cos();
+        let (spp, cpp) = libm::sincos(psi_p);
         let e_tp = V3::new(0.0, -spp, cpp);
         let pocket_origin = cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
         let w_cage_rel = w - V3::x() * cage_rate;
@@ -862,8 +862,8 @@ pub(crate) fn evaluate(
                 } else {
                     let closing = side * closing0;
                     let qh = k_hyd * rad * rad / c.crit_gap;
-                    let kappa = (1.0 - 0.026 * closing.abs().cbrt()).clamp(0.05, 1.0);
-                    let lk = kappa.ln();
+                    let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
+                    let lk = libm::log(kappa);
                     let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
                     let q_el = qh + (c.crit_gap - gap) * c.k_pocket;
                     let q = (q_el + c_ph * closing).max(0.0);

@@ -254,7 +254,7 @@ impl Dopri5 {
                 let fac = if err == 0.0 {
                     5.0
                 } else {
-                    0.9 * err.powf(-0.7 / 5.0) * err_prev.powf(0.4 / 5.0)
+                    0.9 * libm::pow(err, -0.7 / 5.0) * libm::pow(*err_prev, 0.4 / 5.0)
                 };
                 let fac = fac.clamp(0.2, 5.0);
                 *err_prev = err.max(1e-4);
@@ -267,7 +267,7 @@ impl Dopri5 {
             } else {
                 counters.rejected += 1;
                 let fac = if finite {
-                    (0.9 * err.powf(-1.0 / 5.0)).clamp(0.1, 0.9)
+                    (0.9 * libm::pow(err, -1.0 / 5.0)).clamp(0.1, 0.9)
                 } else {
                     0.1
                 };

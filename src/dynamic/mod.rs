@@ -229,7 +229,7 @@ impl Dynamic {
             let psi = cage_angle + TAU * j as f64 / z as f64;
             // attitude: nominal axis tilted by theta in the axial plane
             let beta = g.axis_angle - tilt;
-            let axis = V3::new(beta.cos(), -beta.sin(), 0.0);
+            let axis = V3::new(libm::cos(beta), -libm::sin(beta), 0.0);
             // the state point is the centre of mass, cm_offset along the axis from the centre
             y[o] = g.center[0] + a + g.cm_offset * axis[0];
             y[o + 1] = rho + g.cm_offset * axis[1];
@@ -493,7 +493,7 @@ pub(crate) fn cone_rotation(xi: f64, zeta: f64) -> Matrix3<f64> {
     }
     let k = v / angle;
     let kx = Matrix3::new(0.0, -k[2], k[1], k[2], 0.0, -k[0], -k[1], k[0], 0.0);
-    Matrix3::identity() + kx * angle.sin() + kx * kx * (1.0 - angle.cos())
+    Matrix3::identity() + kx * libm::sin(angle) + kx * kx * (1.0 - libm::cos(angle))
 }
 
 #[cfg(test)]

@@ -291,7 +291,7 @@ impl RosenbrockW {
                 let fac = if err == 0.0 {
                     5.0
                 } else {
-                    0.9 * err.powf(-0.7 / 3.0) * err_prev.powf(0.4 / 3.0)
+                    0.9 * libm::pow(err, -0.7 / 3.0) * libm::pow(*err_prev, 0.4 / 3.0)
                 };
                 // keep the step (and the factorisation) unless it should grow by 20 % or shrink
                 let fac = if (1.0..=1.2).contains(&fac) { 1.0 } else { fac.clamp(0.2, 5.0) };
@@ -301,7 +301,7 @@ impl RosenbrockW {
                 counters.rejected += 1;
                 rejected_in_row += 1;
                 let fac = if finite {
-                    (0.9 * err.powf(-1.0 / 3.0)).clamp(0.1, 0.9)
+                    (0.9 * libm::pow(err, -1.0 / 3.0)).clamp(0.1, 0.9)
                 } else {
                     0.1
                 };

@@ -240,13 +240,13 @@ impl QuasiStatic {
             && inputs.zeta == 0.0
             && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
             && p.roller_dd.iter().all(|d| *d == p.roller_dd[0]);
-        let cos_h = g.half_angle.cos();
-        let cos_o = g.cup_angle.cos();
+        let cos_h = libm::cos(g.half_angle);
+        let cos_o = libm::cos(g.cup_angle);
         for j in 0..z {
             let psi = cage_angle + TAU * j as f64 / z as f64;
-            let (s, c) = psi.sin_cos();
+            let (s, c) = libm::sincos(psi);
             let lobe = if p.outer_lobes > 0 {
-                0.5 * p.outer_waveform * (1.0 - (p.outer_lobes as f64 * psi).cos())
+                0.5 * p.outer_waveform * (1.0 - libm::cos(p.outer_lobes as f64 * psi))
             } else {
                 0.0
             };
@@ -275,7 +275,7 @@ impl QuasiStatic {
         // Moment of the centrifugal force about the roller centre (applied at the centre of mass).
         let m_fc = g.cm_offset * g.axis[0] * fc;
         let m_req = if self.params.gyroscopic {
-            let (sa, ca) = g.axis_angle.sin_cos();
+            let (sa, ca) = libm::sincos(g.axis_angle);
             // H = I_a (wc cos a + w) e + I_t wc (x - cos a e); d H / dt = wc x_hat cross H.
             // x_hat cross e = -sin a e_t, so the in-plane component is:
             -wc * sa * (g.inertia_axial * (wc * ca + w) - g.inertia_transverse * wc * ca)
@@ -632,7 +632,11 @@ impl QuasiStatic {
                         None => continue,
                     };
                     let d_o = g.cup.law.deflection(mid, qo / s);
-                    let d_f = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
+                    let d_f = if qf > 0.0 {
+                        libm::pow(qf / f.hertz.stiffness, 2.0 / 3.0)
+                    } else {
+                        0.0
+                    };
                     // delta_f = (dx - a) n_fx + (dr - rho) n_fr + gamma chi_f - theta lever_f
                     let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
                     let flange_rest = x[0] * nf[0] + dr * nf[1] + st.gamma * self.flange_chi - theta * f.lever;
@@ -684,9 +688,13 @@ impl QuasiStatic {
             } else {
                 0.0
             };
-            let cup_gap = (0.5 * self.params.clearance + mean_lobe) * g.cup_angle.cos();
+            let cup_gap = (0.5 * self.params.clearance + mean_lobe) * libm::cos(g.cup_angle);
             let dol = g.cup.law.deflection(mid, qo / s) + cup_gap;
-            let dfl = if qf > 0.0 { (qf / f.hertz.stiffness).powf(2.0 / 3.0) } else { 0.0 };
+            let dfl = if qf > 0.0 {
+                libm::pow(qf / f.hertz.stiffness, 2.0 / 3.0)
+            } else {
+                0.0
+            };
             // dol = -(a no_x + rho no_r) (+ the gap); di = (dx - a) ni_x - rho ni_r; dfl = (dx - a) nf_x - rho nf_r
             let mm = Matrix3::new(-no[0], -no[1], 0.0, -ni[0], -ni[1], ni[0], -nf[0], -nf[1], nf[0]);
             let v = mm.try_inverse()? * Vector3::new(dol, di, dfl);
@@ -694,7 +702,7 @@ impl QuasiStatic {
         };
         if g.axial {
             let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
-            let tan_o = g.cup_angle.tan();
+            let tan_o = libm::tan(g.cup_angle);
             let sol = match self.params.preload {
                 Preload::Force => {
                     let fa = (inputs.fx.max(0.0) + 0.0 * fr).max(1.2 * fr * tan_o).max(1.0) * load_scale;
@@ -973,7 +981,7 @@ impl QuasiStatic {
     fn runaway_limit(&self) -> f64 {
         let g = &self.geometry;
         let seat = if g.axial && self.params.clearance > 0.0 {
-            0.5 * self.params.clearance / g.cup_angle.tan()
+            0.5 * self.params.clearance / libm::tan(g.cup_angle)
         } else {
             0.0
         };
@@ -1010,7 +1018,7 @@ impl QuasiStatic {
         );
         let force_preload = g.axial && self.params.preload == Preload::Force;
         let seat = self.seating_force(inputs.speed);
-        let tan_o = g.cup_angle.tan();
+        let tan_o = libm::tan(g.cup_angle);
         if force_preload && inputs.fx <= seat * 1.05 && fr <= inputs.fx.max(0.0) / tan_o {
             message.push_str(&format!(
                 "; the bearing is not seated: at this speed the rollers' centrifugal force pushes the cone out through the flange with about {seat:.1} N, and Fx = {:.1} N does not hold it; a tapered roller bearing running at speed needs a minimum axial load",

@@ -151,7 +151,7 @@ impl SkewSetup {
         let ah = g.half_angle;
         let line = |which: &crate::geometry::ContactLine, race_angle: f64, sign: f64, ring_speed: f64| {
             let n = g.slices;
-            let tangent = [race_angle.cos(), -race_angle.sin()];
+            let tangent = [libm::cos(race_angle), -libm::sin(race_angle)];
             let mut out = SkewLine {
                 shift: Vec::with_capacity(n),
                 tangent,
@@ -171,13 +171,13 @@ impl SkewSetup {
             for k in 0..n {
                 let s = g.slice_s[k];
                 let r_c = g.center[1] + s * g.axis[1];
-                out.shift.push(sign * race_angle.cos() * s * s / (2.0 * r_c));
+                out.shift.push(sign * libm::cos(race_angle) * s * s / (2.0 * r_c));
                 // Roller surface speed facing this ring (cage frame): -w R on the cone, w R on the cup.
                 let roller = sign * spin_ratio * g.slice_radius[k];
                 let ring = ring_speed * which.raceway_radius[k];
                 out.slide.push(roller - ring);
                 out.rolling.push(roller.abs());
-                let rho_r = g.slice_radius[k] / ah.cos();
+                let rho_r = g.slice_radius[k] / libm::cos(ah);
                 let rho_g = which.raceway_curvature_radius[k].abs();
                 out.microslip.push(0.25 * (1.0 / (rho_r * rho_r) - 1.0 / (rho_g * rho_g)));
             }
@@ -185,8 +185,8 @@ impl SkewSetup {
         };
         let cone = line(&g.cone, g.cone_angle, -1.0, 1.0 - cage_ratio);
         let cup = line(&g.cup, g.cup_angle, 1.0, -cage_ratio);
-        let rl = g.mean_radius + ls * ah.tan();
-        let rs = g.mean_radius - ls * ah.tan();
+        let rl = g.mean_radius + ls * libm::tan(ah);
+        let rs = g.mean_radius - ls * libm::tan(ah);
         let (flange_s, flange_restoring, flange_lever_max, flange_slide, rib_radius) = match &g.flange {
             Some(f) => {
                 let rel = [f.point[0] - g.center[0], f.point[1] - g.center[1]];
@@ -194,7 +194,7 @@ impl SkewSetup {
                 // End-sphere centre: on the roller axis, R_s from the large end.
                 let s_c = -0.5 * l + b.roller_end_radius;
                 let af = b.flange_angle.unwrap_or(0.0);
-                let restoring = s_c * (af + g.axis_angle).sin();
+                let restoring = s_c * libm::sin(af + g.axis_angle);
                 let slide = spin_ratio * f.offset - (1.0 - cage_ratio) * f.rib_radius;
                 // The contact point travels sideways over the end face, at most to its rim
                 // (large-end radius, no chamfer data) at the contact's distance from the axis.
@@ -205,7 +205,7 @@ impl SkewSetup {
         };
         // Pure-rolling lines of a freely rolling line contact with microslip v ~ u^2 under the
         // semi-elliptical pressure: (2/pi)(u0 sqrt(1 - u0^2) + asin u0) = 1/2.
-        let frac = |u: f64| (2.0 / std::f64::consts::PI) * (u * (1.0 - u * u).sqrt() + u.asin());
+        let frac = |u: f64| (2.0 / std::f64::consts::PI) * (u * (1.0 - u * u).sqrt() + libm::asin(u));
         let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
         for _ in 0..60 {
             let m = 0.5 * (lo + hi);
@@ -263,7 +263,7 @@ impl QuasiStatic {
         let theta = q[2] / ls;
         let (phi, f_c) = sk.split(q[3] / ls);
         let phi2 = phi * phi;
-        let sin_phi = phi.sin();
+        let sin_phi = libm::sin(phi);
         let mut e = SkewEval {
             gap: f64::INFINITY,
             phi,
@@ -786,8 +786,8 @@ impl QuasiStatic {
                     // the thrust of Eq. (7), mu q |sin phi| along the raceway, against the skewed
                     // roller's axial sliding v_roll |sin phi|: its power, consistent with the
                     // force the model applies (the rolling-direction microslip carries the rest)
-                    let v_axial = v_roll * e.phi.sin().abs();
-                    h_race += q * (microslip_power(mu, v_k, micro, sk.u0) + dry_mu(mu, v_axial).abs() * e.phi.sin().abs() * v_axial);
+                    let v_axial = v_roll * libm::sin(e.phi).abs();
+                    h_race += q * (microslip_power(mu, v_k, micro, sk.u0) + dry_mu(mu, v_axial).abs() * libm::sin(e.phi).abs() * v_axial);
                     traction += q * dry_mu(mu, v_k);
                     let ring_force = q * dry_mu(mu, v_k);
                     if is_cone {

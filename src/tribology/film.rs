@@ -35,7 +35,7 @@ pub fn film_point(eta0: f64, alpha: f64, e_prime: f64, u_e: f64, r_e: f64, r_s: 
     let u = eta0 * u_e / (e_prime * r_e);
     let g = alpha * e_prime;
     let w = q / (e_prime * r_e * r_e);
-    let side = 1.0 - (-1.23 * fm::powf(r_s / r_e, 2.0 / 3.0)).exp();
+    let side = 1.0 - libm::exp(-1.23 * fm::powf(r_s / r_e, 2.0 / 3.0));
     r_e * 4.31 * fm::powf(u, 0.68) * fm::powf(g, 0.49) * fm::powf(w, -0.073) * side
 }
 
@@ -52,7 +52,11 @@ pub fn film_line_fast(ln_c: f64, u_e: f64, w: f64) -> f64 {
 
 /// The constant of [`film_line_fast`] for one slice.
 pub fn film_line_log_constant(eta0: f64, alpha: f64, e_prime: f64, r_bar: f64) -> f64 {
-    (2.922_f64).ln() + 0.692 * (eta0 / e_prime).ln() + 0.470 * (alpha * e_prime).ln() + 0.166 * e_prime.ln() + 0.474 * r_bar.ln()
+    libm::log(2.922_f64)
+        + 0.692 * libm::log(eta0 / e_prime)
+        + 0.470 * libm::log(alpha * e_prime)
+        + 0.166 * libm::log(e_prime)
+        + 0.474 * libm::log(r_bar)
 }
 
 /// Least value of the thermal reduction factor: the regression's numerator reaches zero at

@@ -219,7 +219,9 @@ pub fn rolling_couple_log_constant(eta0: f64, alpha: f64, e_prime: f64, r_bar: f
     if !(alpha > 0.0) {
         return f64::NEG_INFINITY;
     }
-    (2.0 * 29.2_f64).ln() + 2.0 * r_bar.ln() - alpha.ln() + 0.648 * (alpha * eta0 / r_bar).ln() - 0.246 * (e_prime * r_bar).ln() + l.ln()
+    libm::log(2.0 * 29.2_f64) + 2.0 * libm::log(r_bar) - libm::log(alpha) + 0.648 * libm::log(alpha * eta0 / r_bar)
+        - 0.246 * libm::log(e_prime * r_bar)
+        + libm::log(l)
 }
 
 /// Regularisation speed of dry Coulomb friction (m/s): below it friction fades smoothly to

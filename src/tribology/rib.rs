@@ -43,7 +43,7 @@ const W: [f64; 8] = [
 
 /// Asperity (boundary) friction share of the rib contact [L22]: mu0 exp(-1.8 Lambda^1.2).
 pub fn flange_boundary_mu(mu0: f64, film_ratio: f64) -> f64 {
-    mu0 * (-1.8 * film_ratio.max(0.0).powf(1.2)).exp()
+    mu0 * libm::exp(-1.8 * libm::pow(film_ratio.max(0.0), 1.2))
 }
 
 /// Viscous traction of the roller-end/rib film [W25]: integral over the contact ellipse of

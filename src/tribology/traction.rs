@@ -94,8 +94,8 @@ impl Rheology {
             beta,
             conductivity,
             eta0,
-            ln_eyring_stress: eyring_stress.ln(),
-            beta_per_roelands: beta / (eta0.ln() + 9.67).max(1.0),
+            ln_eyring_stress: libm::log(eyring_stress),
+            beta_per_roelands: beta / (libm::log(eta0) + 9.67).max(1.0),
         }
     }
 }

@@ -51,7 +51,7 @@ pub fn roelands_viscosity_z(eta0: f64, ln_eta0_967: f64, z: f64, p: f64) -> f64 
 /// The Roelands index z that gives the initial slope `alpha` for viscosity `eta0`; floored at
 /// 0.05 (alpha -> 0: an almost pressure-independent oil) and capped at 1.5.
 pub fn roelands_index(eta0: f64, alpha: f64) -> f64 {
-    let s = (eta0.ln() + 9.67).max(1e-3);
+    let s = (libm::log(eta0) + 9.67).max(1e-3);
     (alpha / (5.1e-9 * s)).clamp(0.05, 1.5)
 }
 
@@ -86,8 +86,8 @@ impl ViscosityTable {
             Piezoviscosity::Roelands => Self::roelands(eta0, roelands_index(eta0, alpha)),
             Piezoviscosity::Barus => ViscosityTable {
                 eta0,
-                ln_eta0: eta0.ln(),
-                ln_eta0_967: eta0.ln() + 9.67,
+                ln_eta0: libm::log(eta0),
+                ln_eta0_967: libm::log(eta0) + 9.67,
                 z: 0.4,
                 barus: Some(alpha),
                 ln_eta: Box::new([]),
@@ -96,14 +96,14 @@ impl ViscosityTable {
     }
 
     fn roelands(eta0: f64, z: f64) -> ViscosityTable {
-        let ln_eta0_967 = eta0.ln() + 9.67;
+        let ln_eta0_967 = libm::log(eta0) + 9.67;
         let ln_eta: Vec<f64> = (0..Self::N)
-            .map(|k| roelands_viscosity_z(eta0, ln_eta0_967, z, k as f64 * Self::STEP).ln())
+            .map(|k| libm::log(roelands_viscosity_z(eta0, ln_eta0_967, z, k as f64 * Self::STEP)))
             .collect();
         let ln_eta = ln_eta.into_boxed_slice();
         ViscosityTable {
             eta0,
-            ln_eta0: eta0.ln(),
+            ln_eta0: libm::log(eta0),
             ln_eta0_967,
             z,
             barus: None,

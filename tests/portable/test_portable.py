@@ -318,19 +318,15 @@ def from_bits(h: str) -> float:
 # radial load ramped every step; and how closely win64 must reproduce linux64 (max relative
 # difference over all Real outputs and steps; Integer outputs exactly).
 #
-# The two libraries run the same machine code paths up to the C math library: f64::exp, ln, powf,
-# sin, cos, sin_cos, tan, atan2, asin, acos call glibc's libm on Linux and msvcrt/mingw-w64's on
-# Windows, which differ by 1 to 4 ulp in 0.1 to 8 % of arguments (measured with a C program on
-# both). The quasi-static model (a converged Newton solve per step) keeps that at the ulp level;
-# the dynamic model carries it through thousands of integrator steps: 1.7e-8 relative after
-# these 40 steps (roller[17].Not). Built with the pure-Rust libm crate in place of the platform
-# libm, both fidelities were bitwise equal under wine (an experiment, not in the code): until the
-# model does that, fidelity 1 is held to LOOSE_TOL and its 1e-12 test is an expected failure.
+# The two libraries run the same machine code: every transcendental function of the model is
+# the pure-Rust libm crate's (or src/fastmath's), not the platform's C library (glibc and
+# msvcrt/mingw-w64 differ by 1 to 4 ulp on 0.1 to 8 % of arguments, which the dynamic model
+# carried to 1.7e-8 relative over these 40 steps before; tests/portable_math.rs keeps the rule).
+# Both fidelities are held to REL_TOL; measured: bitwise equal.
 CASES = {
     0: dict(steps=10, h=1e-3, ramp=1000.0),
     1: dict(steps=40, h=1e-4, ramp=100.0),
 }
-LOOSE_TOL = {0: REL_TOL, 1: 1e-6}
 
 
 def write_plan(path: Path, model: dict, fidelity: int) -> None:
@@ -414,15 +410,7 @@ def wine_runs(extracted, model, linux_driver, wine_driver) -> dict:
 def test_win64_under_wine_matches_linux64(wine_runs, fidelity):
     r = wine_runs(fidelity)
     assert not r["int_diffs"], "Integer outputs differ:\n" + "\n".join(r["int_diffs"][:20])
-    tol = LOOSE_TOL[fidelity]
-    assert r["worst"] <= tol, f"fidelity {fidelity}: win64 differs from linux64 by {r['worst']:.3g} > {tol:g} relative: {r['where']}"
-
-
-@pytest.mark.xfail(strict=True, reason="platform libm differs in the last bits and the dynamic model amplifies it "
-                   "(1.7e-8); bitwise equal with the pure-Rust libm crate (see CASES)")
-def test_win64_under_wine_matches_linux64_dynamic_to_1e_12(wine_runs):
-    r = wine_runs(1)
-    assert r["worst"] <= REL_TOL, f"fidelity 1: {r['worst']:.3g} relative: {r['where']}"
+    assert r["worst"] <= REL_TOL, f"fidelity {fidelity}: win64 differs from linux64 by {r['worst']:.3g} > {REL_TOL:g} relative: {r['where']}"
 
 
 # ------------------------------------------------------------------------------------------------
