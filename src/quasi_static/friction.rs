@@ -366,14 +366,34 @@ impl FrictionModel {
     }
 
     /// One raceway contact: friction power per unit speed, skew moment on the roller, net
-    /// sliding traction on the ring and rolling resistance.
-    fn raceway(&self, e_prime: f64, line: &LineFriction, s: &LineSums, speed: f64, lubrication: Lubrication) -> RacewayFriction {
+    /// sliding traction on the ring and rolling resistance. `loads` the line's slice loads.
+    #[allow(clippy::too_many_arguments)]
+    fn raceway(
+        &self,
+        e_prime: f64,
+        line: &LineFriction,
+        weights: &SliceWeights,
+        s: &LineSums,
+        loads: &[f64],
+        speed: f64,
+        lubrication: Lubrication,
+    ) -> RacewayFriction {
         if s.q <= 0.0 {
             return RacewayFriction::default();
         }
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        // Sums of q |v_s| per unit cone speed (sliding power weight), q s sgn(v_s) (skew moment
+        // weight) and q sgn(v_s) (net sliding traction per unit friction coefficient).
+        let (mut q_slide, mut q_skew, mut q_sign) = (0.0, 0.0, 0.0);
+        for (k, &q) in loads.iter().enumerate() {
+            if q != 0.0 {
+                q_slide += q * weights.slide[k];
+                q_skew += q * weights.skew[k];
+                q_sign += q * weights.sign[k];
+            }
+        }
         // Load-weighted mean sliding speed ratio along the line.
-        let slide = s.q_slide / s.q;
+        let slide = q_slide / s.q;
         let (mu, f_roll) = match lubrication {
             Lubrication::Dry => (tr::dry_mu(self.mu, speed * slide).abs(), 0.0),
             Lubrication::Ehl => {
@@ -392,10 +412,10 @@ impl FrictionModel {
         };
         RacewayFriction {
             // rolling resistance on both surfaces: 2 F u_e
-            torque: mu * s.q_slide + 2.0 * f_roll * line.mid.entrain,
-            skew: mu * sign * s.q_skew,
+            torque: mu * q_slide + 2.0 * f_roll * line.mid.entrain,
+            skew: mu * sign * q_skew,
             // Traction on the ring = +mu q sgn(v_s) e_t with v_s = roller - ring.
-            slide_force: mu * sign * s.q_sign,
+            slide_force: mu * sign * q_sign,
             rolling: f_roll,
         }
     }
@@ -430,17 +450,17 @@ impl FrictionModel {
             }
         }
         for (j, e) in evals.iter().enumerate().take(evaluated) {
+            // slice_loads: per roller, the cone's slices then the cup's
+            let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
             let (cone, cup) = if sliced {
-                // slice_loads: per roller, the cone's slices then the cup's
-                let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
                 (
                     self.raceway_sliced(&g.cone, &self.cone_weights, &cache.cone, &loads[..ns], speed),
                     self.raceway_sliced(&g.cup, &self.cup_weights, &cache.cup, &loads[ns..], speed),
                 )
             } else {
                 (
-                    self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication),
-                    self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication),
+                    self.raceway(g.e_prime, &self.cone, &self.cone_weights, &e.cone, &loads[..ns], speed, lubrication),
+                    self.raceway(g.e_prime, &self.cup, &self.cup_weights, &e.cup, &loads[ns..], speed, lubrication),
                 )
             };
             parts.raceway += cone.torque + cup.torque;

@@ -72,12 +72,7 @@ struct LineSums {
     k: f64,
     k_lever: f64,
     k_lever2: f64,
-    /// Sum of q |v_s| per unit cone speed (sliding power weight) and of q s sgn(v_s)
-    /// (skew moment weight) over the slices, and the number of loaded slices.
-    q_slide: f64,
-    q_skew: f64,
-    /// Sum of q sgn(v_s): the net sliding traction per unit friction coefficient.
-    q_sign: f64,
+    /// Number of loaded slices.
     loaded: u32,
     /// Largest interference over the slices (negative: the line is separated by that gap).
     max_delta: f64,
@@ -93,22 +88,16 @@ struct SliceTable {
     /// cross(P, n) about the bearing origin (cone only; zeros for the cup).
     chi: Vec<f64>,
     crown: Vec<f64>,
-    slide: Vec<f64>,
-    skew: Vec<f64>,
-    sign: Vec<f64>,
 }
 
 impl SliceTable {
-    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, w: &SliceWeights) -> SliceTable {
+    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>) -> SliceTable {
         let n = line.lever.len();
         SliceTable {
             lever: line.lever.clone(),
             lever_s: line.lever.iter().map(|l| l / ls).collect(),
             chi: chi.map(|c| c.to_vec()).unwrap_or_else(|| vec![0.0; n]),
             crown: crown.to_vec(),
-            slide: w.slide.clone(),
-            skew: w.skew.clone(),
-            sign: w.sign.clone(),
         }
     }
 }
@@ -153,8 +142,8 @@ pub struct QuasiStatic {
     regularisation: f64,
     /// The roller skew model [D19] (`skewModel` = true).
     skew: Option<skew::SkewSetup>,
-    /// Converged slice loads per roller (cone slices, then cup slices) for the friction model
-    /// of `traction` = 0; kept to allocate once.
+    /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
+    /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
 }
 
@@ -185,14 +174,14 @@ impl QuasiStatic {
             line.law.load(mid, 1e-6).1 * geometry.slices as f64
         };
         let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
-        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), &friction.cone_weights);
-        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, &friction.cup_weights);
+        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi));
+        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None);
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
             skew,
-            slice_load_buffer: Vec::new(),
+            slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -287,38 +276,39 @@ impl QuasiStatic {
 
     /// Sums over the slices of one contact line. The interference of slice k is affine in
     /// the unknowns: delta_k = base - theta lever_k + gamma chi_k - crown_k. One specialised
-    /// loop per contact law (no per-slice dispatch).
+    /// loop per contact law (no per-slice dispatch). The slice loads go to `loads` (0 where
+    /// the slice is not in contact).
     #[inline]
-    fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64) -> LineSums {
+    fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64, loads: &mut [f64]) -> LineSums {
         match &line.law {
             LineLaw::Johnson { c, ln_8r } => {
                 let ln_8r = &ln_8r[..t.lever.len()];
-                Self::line_sums_with(t, base, theta, gamma, |k, d| contact::johnson(*c, ln_8r[k], d))
+                Self::line_sums_with(t, base, theta, gamma, loads, |k, d| contact::johnson(*c, ln_8r[k], d))
             }
-            LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, |_, d| contact::palmgren(*k, d)),
+            LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, loads, |_, d| contact::palmgren(*k, d)),
         }
     }
 
     #[inline(always)]
-    fn line_sums_with<L: Fn(usize, f64) -> (f64, f64, bool)>(t: &SliceTable, base: f64, theta: f64, gamma: f64, law: L) -> LineSums {
+    fn line_sums_with<L: Fn(usize, f64) -> (f64, f64, bool)>(
+        t: &SliceTable,
+        base: f64,
+        theta: f64,
+        gamma: f64,
+        loads: &mut [f64],
+        law: L,
+    ) -> LineSums {
         let mut s = LineSums {
             max_delta: f64::NEG_INFINITY,
             ..LineSums::default()
         };
         let n = t.lever.len();
-        let (lever, lever_s, chi, crown, slide, skew, sign) = (
-            &t.lever[..n],
-            &t.lever_s[..n],
-            &t.chi[..n],
-            &t.crown[..n],
-            &t.slide[..n],
-            &t.skew[..n],
-            &t.sign[..n],
-        );
+        let (lever, lever_s, chi, crown, loads) = (&t.lever[..n], &t.lever_s[..n], &t.chi[..n], &t.crown[..n], &mut loads[..n]);
         for k in 0..n {
             let delta = base - theta * lever[k] + gamma * chi[k] - crown[k];
             s.max_delta = s.max_delta.max(delta);
             if delta <= 0.0 {
+                loads[k] = 0.0;
                 continue;
             }
             let (q, dq, ext) = law(k, delta);
@@ -329,17 +319,17 @@ impl QuasiStatic {
             s.k += dq;
             s.k_lever += dq * lv;
             s.k_lever2 += dq * lv * lv;
-            s.q_slide += q * slide[k];
-            s.q_skew += q * skew[k];
-            s.q_sign += q * sign[k];
+            loads[k] = q;
             s.loaded += 1;
             s.extrapolated |= ext;
         }
         s
     }
 
-    /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`.
-    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64) -> RollerEval {
+    /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`; its
+    /// slice loads go to `loads` (cone slices, then cup slices).
+    #[allow(clippy::too_many_arguments)]
+    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64, loads: &mut [f64]) -> RollerEval {
         let g = &self.geometry;
         let st = &self.setup[j];
         let ls = self.ls;
@@ -352,11 +342,12 @@ impl QuasiStatic {
         // Cone: delta = (dx - a) n_x + (dr - rho) n_r + gamma chi - theta lever + gap - crown
         let ni = g.cone.normal;
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
-        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma);
+        let (cone_loads, cup_loads) = loads.split_at_mut(g.slices);
+        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma, cone_loads);
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
-        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0);
+        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0, cup_loads);
 
         let add_line = |e: &mut RollerEval, n: [f64; 2], s: &LineSums, on_cone: bool| {
             let nv = Vector3::new(n[0], n[1], 0.0);
@@ -431,11 +422,13 @@ impl QuasiStatic {
         let mut merit = 0.0;
         let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
         let evaluated = if self.axisymmetric { 1 } else { z };
+        let ns = self.geometry.slices;
+        let mut loads = std::mem::take(&mut self.slice_load_buffer);
         for j in 0..evaluated {
             let st = self.setup[j];
             let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
             let q = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
-            let e = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req);
+            let e = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req, &mut loads[2 * ns * j..2 * ns * (j + 1)]);
             ring[0] += e.f_cone[0];
             ring[1] += e.f_cone[1] * st.cos_psi;
             ring[2] += e.f_cone[1] * st.sin_psi;
@@ -448,6 +441,7 @@ impl QuasiStatic {
             f_ref = f_ref.max(e.qi).max(e.qo);
             self.evals[j] = e;
         }
+        self.slice_load_buffer = loads;
         if self.axisymmetric {
             let e = self.evals[0];
             for j in 1..z {
@@ -1069,20 +1063,17 @@ impl QuasiStatic {
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
+        // The slice loads of the last evaluation, which was at the solution `x`.
         let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
-        let mut loads = std::mem::take(&mut self.slice_load_buffer);
-        if self.friction.needs_slice_loads(self.params.lubrication) {
-            let ns = self.geometry.slices;
-            loads.resize(2 * ns * z, 0.0);
-            for j in 0..evaluated {
-                let (cone, cup) = loads[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
-                self.slice_loads(x, j, cone, cup);
-            }
-        }
-        let torque = self
-            .friction
-            .evaluate(&self.geometry, &self.evals, evaluated, inputs, self.params.lubrication, &loads, out);
-        self.slice_load_buffer = loads;
+        let torque = self.friction.evaluate(
+            &self.geometry,
+            &self.evals,
+            evaluated,
+            inputs,
+            self.params.lubrication,
+            &self.slice_load_buffer,
+            out,
+        );
         out.friction_torque_raceway = torque.raceway;
         out.friction_torque_flange = torque.flange;
         out.friction_torque_cage = 0.0;
