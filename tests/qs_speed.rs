@@ -87,6 +87,15 @@ fn kernel() {
     let name = std::env::var("QS_CASE").expect("QS_CASE");
     let n: usize = std::env::var("QS_STEPS").ok().and_then(|s| s.parse().ok()).unwrap_or(MEASURED_STEPS);
     let mut s = case_sim(&name);
+    if std::env::var_os("QS_SEQ").is_some() {
+        let mut seq = Vec::new();
+        for k in 0..n {
+            s.do_step((WARM_STEPS + k) as f64 * H, H).unwrap();
+            seq.push(s.last_outputs().solver_iterations);
+        }
+        println!("iterations per step {seq:?}");
+        return;
+    }
     let it = qs_measured_steps(&mut s, n);
     println!("iterations {it}");
 }

@@ -30,6 +30,14 @@ use std::f64::consts::TAU;
 
 pub use friction::{FrictionModel, SliceWeights};
 
+/// Inputs kept with a warm start (for the temporal predictor).
+const WARM_INPUTS: usize = 7;
+
+/// The inputs of a solve as the warm start keeps them.
+fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
+    [i.speed, i.xi, i.zeta, i.fx, i.fy, i.fz, i.axial_displacement]
+}
+
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
 
@@ -145,6 +153,8 @@ pub struct QuasiStatic {
     /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
     /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
+    /// Scratch for the previous warm-start block (allocated once).
+    history: Vec<f64>,
 }
 
 impl QuasiStatic {
@@ -182,6 +192,7 @@ impl QuasiStatic {
         Ok(QuasiStatic {
             skew,
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
+            history: Vec::new(),
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -758,12 +769,28 @@ impl QuasiStatic {
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
 
-        // The warm start holds the unknowns and, last, the cage angle they were solved at.
-        let cold = warm.len() != n + 1;
+        // The warm start holds the unknowns, the cage angle and the inputs they were solved at
+        // (a block of n + 1 + WARM_INPUTS; n + 1 from an older caller: no inputs), then the
+        // block of the solve before.
+        let block = n + 1 + WARM_INPUTS;
+        let cold = !(warm.len() == n + 1 || warm.len() == block || warm.len() == 2 * block);
         let previous_angle = if cold { cage_angle } else { warm[n] };
+        let now = warm_inputs(inputs);
+        let mut history = std::mem::take(&mut self.history);
+        history.clear();
+        if !cold {
+            history.extend_from_slice(&warm[..n + 1]);
+            if warm.len() >= block {
+                history.extend_from_slice(&warm[n + 1..block]);
+            } else {
+                history.extend_from_slice(&[f64::NAN; WARM_INPUTS]);
+            }
+        }
+        let extrapolated = !cold && warm.len() == 2 * block && self.extrapolate(warm, n, cage_angle, &now);
+        warm.truncate(n);
         warm.resize(n, 0.0);
         let mut x = std::mem::take(warm);
-        if !cold {
+        if !cold && !extrapolated {
             self.predict(&mut x, cage_angle - previous_angle);
         }
         let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
@@ -820,8 +847,48 @@ impl QuasiStatic {
         };
         self.write_outputs(&x, inputs, report, out);
         x.push(cage_angle);
+        x.extend_from_slice(&now);
+        if history.len() == block {
+            x.extend_from_slice(&history);
+        }
+        self.history = history;
         *warm = x;
         Ok(report)
+    }
+
+    /// Temporal predictor: when the cage moved little since the last solve and the one before
+    /// (at most a tenth of the roller pitch each time) and the inputs changed along the same
+    /// line (constant, or a ramp: a smooth time table), every unknown continues along its
+    /// own path: x + r (x - x_prev), r the ratio of this cage advance to the last one. `warm`
+    /// holds both solves (see `solve_in_plane`); on success its first n values are the
+    /// prediction. Far more accurate than the spatial predictor where the rollers move little
+    /// per step (slow shafts, small steps) and with rollers of different diameters.
+    fn extrapolate(&self, warm: &mut [f64], n: usize, cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if self.axisymmetric {
+            return false;
+        }
+        let block = n + 1 + WARM_INPUTS;
+        let pitch = TAU / self.geometry.z as f64;
+        let wrap = |a: f64| a - TAU * (a / TAU).round();
+        let d = wrap(cage_angle - warm[n]);
+        let d1 = wrap(warm[n] - warm[block + n]);
+        if !(d1.abs() > 0.0 && d1.abs() <= 0.1 * pitch && d.abs() <= 0.1 * pitch) {
+            return false;
+        }
+        let ratio = d / d1;
+        let (u, u1) = (&warm[n + 1..block], &warm[block + n + 1..2 * block]);
+        for i in 0..WARM_INPUTS {
+            let step = now[i] - u[i];
+            let last = u[i] - u1[i];
+            if !((step - ratio * last).abs() <= 0.1 * step.abs() + 1e-12 * now[i].abs().max(1.0)) {
+                return false;
+            }
+        }
+        let (x, prev) = warm.split_at_mut(block);
+        for i in 0..n {
+            x[i] += ratio * (x[i] - prev[i]);
+        }
+        true
     }
 
     /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
