@@ -212,10 +212,32 @@ fn dump() {
                 e.2 = format!("{} step {}: {va:?} vs {vb:?}", fa[3], fa[1]);
             }
         }
+        // relative to the output's scale: its largest magnitude over steps and rollers, but at
+        // least 1e-6 of the largest magnitude of any output of the same unit in the case (a
+        // moment that is zero by symmetry has no scale of its own); solver.residual left out
+        let unit_of = |name: &str| -> String {
+            ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"]
+                .iter()
+                .find_map(|p| {
+                    let z = Bearing::preset(p).unwrap().roller_count;
+                    var::expanded(z).into_iter().find(|(_, _, row)| row.name == name).map(|(_, _, row)| row.unit.unwrap_or("1").to_string())
+                })
+                .unwrap_or_default()
+        };
+        let mut unit_scale: std::collections::BTreeMap<(String, String), f64> = Default::default();
+        for ((case, row), (scale, _, _)) in &worst {
+            let e = unit_scale.entry((case.clone(), unit_of(row))).or_insert(0.0);
+            *e = e.max(*scale);
+        }
         let mut overall: f64 = 0.0;
         let mut per_case: std::collections::BTreeMap<String, (f64, String)> = Default::default();
         for ((case, row), (scale, diff, what)) in &worst {
-            let rel = if *scale > 0.0 { diff / scale } else { *diff };
+            if row == "solver.residual" {
+                continue;
+            }
+            let floor = 1e-6 * unit_scale[&(case.clone(), unit_of(row))];
+            let scale = scale.max(floor);
+            let rel = if scale > 0.0 { diff / scale } else { *diff };
             let e = per_case.entry(case.clone()).or_insert((0.0, String::new()));
             if rel > e.0 {
                 *e = (rel, format!("{row} ({what})"));

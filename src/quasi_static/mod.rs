@@ -18,6 +18,7 @@
 //! residual, so converged solutions are exact).
 
 mod friction;
+mod simd;
 mod skew;
 pub mod studies;
 
@@ -87,9 +88,15 @@ struct LineSums {
     extrapolated: bool,
 }
 
-/// Per-slice constants of one contact line, as flat arrays for the slice loop.
+/// Per-slice constants of one contact line, as flat arrays for the slice loop, padded to an
+/// even length for the two-lane kernel (`simd.rs`; a padding slice never touches: lever and
+/// chi 0, crown +inf).
 #[derive(Debug, Clone)]
 struct SliceTable {
+    /// Number of slices (the arrays may be one longer).
+    n: usize,
+    /// ln(8 R) per slice of the Johnson law (empty for Palmgren).
+    ln_8r: Vec<f64>,
     lever: Vec<f64>,
     /// lever / L_s
     lever_s: Vec<f64>,
@@ -101,11 +108,21 @@ struct SliceTable {
 impl SliceTable {
     fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>) -> SliceTable {
         let n = line.lever.len();
+        let padded = (n + 1) & !1;
+        let pad = |mut v: Vec<f64>, fill: f64| {
+            v.resize(padded, fill);
+            v
+        };
         SliceTable {
-            lever: line.lever.clone(),
-            lever_s: line.lever.iter().map(|l| l / ls).collect(),
-            chi: chi.map(|c| c.to_vec()).unwrap_or_else(|| vec![0.0; n]),
-            crown: crown.to_vec(),
+            n,
+            ln_8r: match &line.law {
+                LineLaw::Johnson { ln_8r, .. } => pad(ln_8r[..n].to_vec(), 0.0),
+                LineLaw::Palmgren { .. } => Vec::new(),
+            },
+            lever: pad(line.lever.clone(), 0.0),
+            lever_s: pad(line.lever.iter().map(|l| l / ls).collect(), 0.0),
+            chi: pad(chi.map(|c| c[..n].to_vec()).unwrap_or_else(|| vec![0.0; n]), 0.0),
+            crown: pad(crown[..n].to_vec(), f64::INFINITY),
         }
     }
 }
@@ -291,9 +308,19 @@ impl QuasiStatic {
     /// the slice is not in contact).
     #[inline]
     fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64, loads: &mut [f64]) -> LineSums {
+        #[cfg(target_arch = "x86_64")]
+        {
+            let law = match &line.law {
+                LineLaw::Johnson { c, .. } => simd::Law::Johnson { c: *c, ln_8r: &t.ln_8r },
+                LineLaw::Palmgren { k } => simd::Law::Palmgren { k: *k },
+            };
+            if let Some(s) = simd::line_sums(t, t.n, law, base, theta, gamma, loads) {
+                return s;
+            }
+        }
         match &line.law {
             LineLaw::Johnson { c, ln_8r } => {
-                let ln_8r = &ln_8r[..t.lever.len()];
+                let ln_8r = &ln_8r[..t.n];
                 Self::line_sums_with(t, base, theta, gamma, loads, |k, d| contact::johnson(*c, ln_8r[k], d))
             }
             LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, loads, |_, d| contact::palmgren(*k, d)),
@@ -313,7 +340,7 @@ impl QuasiStatic {
             max_delta: f64::NEG_INFINITY,
             ..LineSums::default()
         };
-        let n = t.lever.len();
+        let n = t.n;
         let (lever, lever_s, chi, crown, loads) = (&t.lever[..n], &t.lever_s[..n], &t.chi[..n], &t.crown[..n], &mut loads[..n]);
         for k in 0..n {
             let delta = base - theta * lever[k] + gamma * chi[k] - crown[k];
