@@ -95,8 +95,10 @@ struct LineSums {
 struct SliceTable {
     /// Number of slices (the arrays may be one longer).
     n: usize,
-    /// ln(8 R) per slice of the Johnson law (empty for Palmgren).
+    /// ln(8 R) per slice of the Johnson law (empty for Palmgren), and an interference below
+    /// which no slice of the line is beyond the law's validity (ln(8R/delta) - 1 >= 3).
     ln_8r: Vec<f64>,
+    johnson_limit: f64,
     lever: Vec<f64>,
     /// lever / L_s
     lever_s: Vec<f64>,
@@ -118,6 +120,10 @@ impl SliceTable {
             ln_8r: match &line.law {
                 LineLaw::Johnson { ln_8r, .. } => pad(ln_8r[..n].to_vec(), 0.0),
                 LineLaw::Palmgren { .. } => Vec::new(),
+            },
+            johnson_limit: match &line.law {
+                LineLaw::Johnson { ln_8r, .. } => 0.999 * ln_8r[..n].iter().fold(f64::INFINITY, |m, l| m.min((l - (contact::JOHNSON_LOG_FLOOR + 1.0)).exp())),
+                LineLaw::Palmgren { .. } => f64::INFINITY,
             },
             lever: pad(line.lever.clone(), 0.0),
             lever_s: pad(line.lever.iter().map(|l| l / ls).collect(), 0.0),
