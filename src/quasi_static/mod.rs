@@ -95,6 +95,9 @@ struct LineSums {
 struct SliceTable {
     /// Number of slices (the arrays may be one longer).
     n: usize,
+    /// Use the two-lane kernel (`simd.rs`). Not for the quasi-static start of the dynamic
+    /// model: the scalar loop gives that start bit for bit as before the kernel existed.
+    vector: bool,
     /// ln(8 R) per slice of the Johnson law (empty for Palmgren), and an interference below
     /// which no slice of the line is beyond the law's validity (ln(8R/delta) - 1 >= 3).
     ln_8r: Vec<f64>,
@@ -108,7 +111,7 @@ struct SliceTable {
 }
 
 impl SliceTable {
-    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>) -> SliceTable {
+    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, vector: bool) -> SliceTable {
         let n = line.lever.len();
         let padded = (n + 1) & !1;
         let pad = |mut v: Vec<f64>, fill: f64| {
@@ -117,6 +120,7 @@ impl SliceTable {
         };
         SliceTable {
             n,
+            vector,
             ln_8r: match &line.law {
                 LineLaw::Johnson { ln_8r, .. } => pad(ln_8r[..n].to_vec(), 0.0),
                 LineLaw::Palmgren { .. } => Vec::new(),
@@ -207,8 +211,9 @@ impl QuasiStatic {
             line.law.load(mid, 1e-6).1 * geometry.slices as f64
         };
         let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
-        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi));
-        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None);
+        let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
+        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
+        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
@@ -315,7 +320,7 @@ impl QuasiStatic {
     #[inline]
     fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64, loads: &mut [f64]) -> LineSums {
         #[cfg(target_arch = "x86_64")]
-        {
+        if t.vector {
             let law = match &line.law {
                 LineLaw::Johnson { c, .. } => simd::Law::Johnson { c: *c, ln_8r: &t.ln_8r },
                 LineLaw::Palmgren { k } => simd::Law::Palmgren { k: *k },
