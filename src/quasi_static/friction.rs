@@ -384,13 +384,12 @@ impl FrictionModel {
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         // Sums of q |v_s| per unit cone speed (sliding power weight), q s sgn(v_s) (skew moment
         // weight) and q sgn(v_s) (net sliding traction per unit friction coefficient).
+        // (unloaded slices add q x = +-0, which changes no sum)
         let (mut q_slide, mut q_skew, mut q_sign) = (0.0, 0.0, 0.0);
-        for (k, &q) in loads.iter().enumerate() {
-            if q != 0.0 {
-                q_slide += q * weights.slide[k];
-                q_skew += q * weights.skew[k];
-                q_sign += q * weights.sign[k];
-            }
+        for (((&q, &slide), &skew), &sign) in loads.iter().zip(&weights.slide).zip(&weights.skew).zip(&weights.sign) {
+            q_slide += q * slide;
+            q_skew += q * skew;
+            q_sign += q * sign;
         }
         // Load-weighted mean sliding speed ratio along the line.
         let slide = q_slide / s.q;
