@@ -149,6 +149,10 @@ pub struct FrictionModel {
     lubricant: tr::Lubricant,
     /// Per-slice-position constants at the last speed (`traction` = 0 with EHL).
     cache: SpeedCache,
+    /// Solve the thermal Eyring film equation by Halley's method (fidelity 0); Newton's, as
+    /// the dynamic model does, for the quasi-static start of the dynamic model (its outputs
+    /// bit for bit as before).
+    halley: bool,
 }
 
 impl FrictionModel {
@@ -210,6 +214,7 @@ impl FrictionModel {
                 speed: f64::NAN,
                 ..SpeedCache::default()
             },
+            halley: p.fidelity == crate::model::Fidelity::QuasiStatic,
         }
     }
 
@@ -283,7 +288,14 @@ impl FrictionModel {
     /// the slide-to-roll ratio, so a mean over the line would misplace the plateau), and its
     /// EHL rolling resistance on both surfaces. `consts`: the line's [`SliceConst`] at this
     /// speed (empty at standstill: the laws' own zero-speed branches).
-    fn raceway_sliced(&self, line: &ContactLine, weights: &SliceWeights, consts: &[SliceConst], loads: &[f64], speed: f64) -> RacewayFriction {
+    fn raceway_sliced<const HALLEY: bool>(
+        &self,
+        line: &ContactLine,
+        weights: &SliceWeights,
+        consts: &[SliceConst],
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
         if consts.is_empty() {
             return self.raceway_sliced_generic(line, weights, loads, speed);
         }
@@ -305,8 +317,13 @@ impl FrictionModel {
                 let mu = if w > 0.0 {
                     let h = heating * h_iso;
                     let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
-                    self.lubricant
-                        .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                    if HALLEY {
+                        self.lubricant
+                            .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                    } else {
+                        self.lubricant
+                            .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                    }
                 } else {
                     0.0
                 };
@@ -452,10 +469,18 @@ impl FrictionModel {
             // slice_loads: per roller, the cone's slices then the cup's
             let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
             let (cone, cup) = if sliced {
-                (
-                    self.raceway_sliced(&g.cone, &self.cone_weights, &cache.cone, &loads[..ns], speed),
-                    self.raceway_sliced(&g.cup, &self.cup_weights, &cache.cup, &loads[ns..], speed),
-                )
+                let (cone, cup) = (&loads[..ns], &loads[ns..]);
+                if self.halley {
+                    (
+                        self.raceway_sliced::<true>(&g.cone, &self.cone_weights, &cache.cone, cone, speed),
+                        self.raceway_sliced::<true>(&g.cup, &self.cup_weights, &cache.cup, cup, speed),
+                    )
+                } else {
+                    (
+                        self.raceway_sliced::<false>(&g.cone, &self.cone_weights, &cache.cone, cone, speed),
+                        self.raceway_sliced::<false>(&g.cup, &self.cup_weights, &cache.cup, cup, speed),
+                    )
+                }
             } else {
                 (
                     self.raceway(g.e_prime, &self.cone, &self.cone_weights, &e.cone, &loads[..ns], speed, lubrication),
@@ -484,7 +509,11 @@ impl FrictionModel {
                         match self.traction {
                             tr::TractionLaw::ThermalEyring => {
                                 let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 2.0 };
-                                self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                if self.halley {
+                                    self.lubricant.rib_force_halley(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                } else {
+                                    self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                }
                             }
                             tr::TractionLaw::NewtonianEyring => {
                                 let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };

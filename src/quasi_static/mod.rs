@@ -1168,8 +1168,19 @@ impl QuasiStatic {
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
-        // The slice loads of the last evaluation, which was at the solution `x`.
+        // The slice loads of the last evaluation, which was at the solution `x`; for the start
+        // of the dynamic model recomputed as before the loads were kept (the interference
+        // summed in another order: its outputs bit for bit as before).
         let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
+        if !self.cone_table.vector {
+            let ns = self.geometry.slices;
+            let mut loads = std::mem::take(&mut self.slice_load_buffer);
+            for j in 0..evaluated {
+                let (cone, cup) = loads[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
+                self.slice_loads(x, j, cone, cup);
+            }
+            self.slice_load_buffer = loads;
+        }
         let torque = self.friction.evaluate(
             &self.geometry,
             &self.evals,
