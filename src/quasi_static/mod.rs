@@ -39,6 +39,86 @@ fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
     [i.speed, i.xi, i.zeta, i.fx, i.fy, i.fz, i.axial_displacement]
 }
 
+/// Bins per roller pitch of the azimuth table predictor (`QuasiStatic::table_predict`).
+const TABLE_BINS: usize = 16;
+
+/// `v` rounded to an integer (|v| < 2^51; no libm call on baseline x86-64, which lacks the
+/// SSE4.1 rounding instruction).
+#[inline(always)]
+fn round_int(v: f64) -> f64 {
+    const ROUNDER: f64 = 6_755_399_441_055_744.0;
+    (v + ROUNDER) - ROUNDER
+}
+
+/// `a` wrapped into [0, period) (up to rounding at the ends).
+#[inline(always)]
+fn wrap_to(a: f64, period: f64) -> f64 {
+    let w = a - period * round_int(a / period);
+    if w < 0.0 {
+        w + period
+    } else {
+        w
+    }
+}
+
+/// Cubic interpolation at `t` in a periodic table of `nb` bins over `period` (4 values per bin:
+/// position, then three values; NaN position: empty) on the two nearest filled nodes on each
+/// side of `t` within two pitches (TABLE_BINS bins each way) or half the period.
+fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f64; 3]) -> bool {
+    let b = ((t / period * nb as f64) as usize).min(nb - 1);
+    let reach = (2 * TABLE_BINS).min(nb / 2);
+    let offset = |bin: usize| {
+        let d = nodes[4 * bin] - t;
+        d - period * round_int(d / period)
+    };
+    // two nodes at or below t, nearest first, then two above
+    let (mut below, mut nbelow) = ([(0.0, 0usize); 2], 0);
+    let (mut above, mut nabove) = ([(0.0, 0usize); 2], 0);
+    for k in 0..=reach {
+        let bin = (b + nb - k % nb) % nb;
+        if nbelow < 2 && !nodes[4 * bin].is_nan() {
+            let d = offset(bin);
+            if d <= 0.0 && (nbelow == 0 || d < below[0].0) {
+                below[nbelow] = (d, bin);
+                nbelow += 1;
+            }
+        }
+        let bin = (b + k) % nb;
+        if nabove < 2 && !nodes[4 * bin].is_nan() {
+            let d = offset(bin);
+            if d > 0.0 && (nabove == 0 || d > above[0].0) {
+                above[nabove] = (d, bin);
+                nabove += 1;
+            }
+        }
+        if nbelow == 2 && nabove == 2 {
+            break;
+        }
+    }
+    if nbelow < 2 || nabove < 2 {
+        return false;
+    }
+    // Lagrange weights at offset 0 of the nodes at offsets d
+    let node = [below[1], below[0], above[0], above[1]];
+    let d = [node[0].0, node[1].0, node[2].0, node[3].0];
+    *out = [0.0; 3];
+    for i in 0..4 {
+        let (mut num, mut den) = (1.0, 1.0);
+        for m in 0..4 {
+            if m != i {
+                num *= -d[m];
+                den *= d[i] - d[m];
+            }
+        }
+        let l = num / den;
+        let v = &nodes[4 * node[i].1 + 1..4 * node[i].1 + 4];
+        for c in 0..3 {
+            out[c] += l * v[c];
+        }
+    }
+    out.iter().all(|v| v.is_finite())
+}
+
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
 
@@ -180,8 +260,8 @@ pub struct QuasiStatic {
     /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
     /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
-    /// Scratch for the previous warm-start block (allocated once).
-    history: Vec<f64>,
+    /// Scratch for the unknowns of a solve (allocated once).
+    x: Vec<f64>,
 }
 
 impl QuasiStatic {
@@ -220,7 +300,7 @@ impl QuasiStatic {
         Ok(QuasiStatic {
             skew,
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
-            history: Vec::new(),
+            x: Vec::new(),
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -807,29 +887,26 @@ impl QuasiStatic {
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
 
-        // The warm start holds the unknowns, the cage angle and the inputs they were solved at
-        // (a block of n + 1 + WARM_INPUTS; n + 1 from an older caller: no inputs), then the
-        // block of the solve before.
+        // The warm start: the unknowns, the cage angle and the inputs they were solved at (a
+        // block of n + 1 + WARM_INPUTS; n + 1 from an older caller: no inputs), the same block
+        // of the solve before, and the azimuth table of converged solutions (`table_record`).
+        // It stays in place; the unknowns are solved in a scratch vector.
         let block = n + 1 + WARM_INPUTS;
-        let cold = !(warm.len() == n + 1 || warm.len() == block || warm.len() == 2 * block);
-        let previous_angle = if cold { cage_angle } else { warm[n] };
+        let full = 2 * block + self.table_len();
+        let cold = !(warm.len() == n + 1 || warm.len() == block || warm.len() == full);
         let now = warm_inputs(inputs);
-        let mut history = std::mem::take(&mut self.history);
-        history.clear();
-        if !cold {
-            history.extend_from_slice(&warm[..n + 1]);
-            if warm.len() >= block {
-                history.extend_from_slice(&warm[n + 1..block]);
-            } else {
-                history.extend_from_slice(&[f64::NAN; WARM_INPUTS]);
+        let mut x = std::mem::take(&mut self.x);
+        x.clear();
+        if cold {
+            x.resize(n, 0.0);
+        } else {
+            x.extend_from_slice(&warm[..n]);
+            let predicted = warm.len() == full
+                && (self.extrapolate(&mut x, &warm[..2 * block], cage_angle, &now)
+                    || self.table_predict(&warm[2 * block..], &mut x, cage_angle, &now));
+            if !predicted {
+                self.predict(&mut x, cage_angle - warm[n]);
             }
-        }
-        let extrapolated = !cold && warm.len() == 2 * block && self.extrapolate(warm, n, cage_angle, &now);
-        warm.truncate(n);
-        warm.resize(n, 0.0);
-        let mut x = std::mem::take(warm);
-        if !cold && !extrapolated {
-            self.predict(&mut x, cage_angle - previous_angle);
         }
         let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
             (false, _) => Some(0.0),
@@ -878,43 +955,135 @@ impl QuasiStatic {
                     }
                     None => {
                         *warm = Vec::new();
+                        self.x = x;
                         return Err(first);
                     }
                 }
             }
         };
         self.write_outputs(&x, inputs, report, out);
-        x.push(cage_angle);
-        x.extend_from_slice(&now);
-        if history.len() == block {
-            x.extend_from_slice(&history);
+        if warm.len() == full {
+            // this solve's block becomes the previous one
+            warm.copy_within(0..block, block);
+        } else {
+            // from a shorter (or no) warm start: its block, if any, is the previous one (inputs
+            // unknown if it had none), the table empty (allocates on the first solves only)
+            let mut w = vec![f64::NAN; full];
+            if !cold {
+                let m = warm.len().min(block);
+                w[block..block + m].copy_from_slice(&warm[..m]);
+            }
+            *warm = w;
         }
-        self.history = history;
-        *warm = x;
+        warm[..n].copy_from_slice(&x);
+        warm[n] = cage_angle;
+        warm[n + 1..block].copy_from_slice(&now);
+        self.table_record(&mut warm[2 * block..], &x, cage_angle, &now);
+        self.x = x;
         Ok(report)
+    }
+
+    /// Length of the azimuth table in the warm start.
+    fn table_len(&self) -> usize {
+        1 + WARM_INPUTS + 4 * TABLE_BINS * self.geometry.z + 4 * TABLE_BINS
+    }
+
+    /// Whether the table predictor applies: identical rollers (then a roller's solution is a
+    /// function of its azimuth alone) and a solve that is not axisymmetric.
+    fn table_applies(&self) -> bool {
+        let dd = &self.params.roller_dd;
+        !self.axisymmetric && dd.iter().all(|d| *d == dd[0])
+    }
+
+    /// Record the solution `x` (roller 1 at `cage_angle`) in the azimuth table: with constant
+    /// inputs the equilibrium is periodic, each roller's unknowns a function of its azimuth
+    /// and the cone's of the cage phase (the cage angle modulo the pitch). The table keeps, in
+    /// TABLE_BINS bins per pitch, the latest solution seen there with its exact azimuth; it is
+    /// emptied when the inputs change. Layout: 1 (version), the inputs, per roller bin (psi,
+    /// a, rho, theta L_s), per cone bin (phase, x, y, z).
+    fn table_record(&self, table: &mut [f64], x: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) {
+        if !self.table_applies() {
+            return;
+        }
+        let z = self.geometry.z;
+        let pitch = TAU / z as f64;
+        let (head, rest) = table.split_at_mut(1 + WARM_INPUTS);
+        if head[0] != 1.0 || head[1..] != now[..] {
+            head[0] = 1.0;
+            head[1..].copy_from_slice(now);
+            rest.fill(f64::NAN);
+        }
+        let nb = TABLE_BINS * z;
+        let (rollers, cone) = rest.split_at_mut(4 * nb);
+        for j in 0..z {
+            let psi = wrap_to(cage_angle + pitch * j as f64, TAU);
+            let b = ((psi / TAU * nb as f64) as usize).min(nb - 1);
+            rollers[4 * b..4 * b + 4].copy_from_slice(&[psi, x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]]);
+        }
+        let phase = wrap_to(cage_angle, pitch);
+        let b = ((phase / pitch * TABLE_BINS as f64) as usize).min(TABLE_BINS - 1);
+        cone[4 * b..4 * b + 4].copy_from_slice(&[phase, x[0], x[1], x[2]]);
+    }
+
+    /// Table predictor: with the inputs of the table unchanged, every roller's unknowns and the
+    /// cone's are interpolated (cubic, on the four nearest recorded azimuths, two on each
+    /// side within two pitches) from the solutions recorded at nearby azimuths in earlier
+    /// steps. Far finer than the spatial predictor's one sample per pitch once the table has
+    /// filled (rollers that advance a non-integral number of pitches per step sample new
+    /// azimuths every step). False (x untouched) where any node is missing.
+    fn table_predict(&mut self, table: &[f64], x: &mut [f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if !self.table_applies() || table.len() != self.table_len() || table[0] != 1.0 || table[1..1 + WARM_INPUTS] != now[..] {
+            return false;
+        }
+        let z = self.geometry.z;
+        let pitch = TAU / z as f64;
+        let nb = TABLE_BINS * z;
+        let (rollers, cone) = table[1 + WARM_INPUTS..].split_at(4 * nb);
+        let mut pred = [0.0; 3];
+        if !table_interpolate(cone, TABLE_BINS, pitch, wrap_to(cage_angle, pitch), &mut pred) {
+            return false;
+        }
+        // all or nothing: into the scratch first
+        let mut trial = std::mem::take(&mut self.trial);
+        trial[..3].copy_from_slice(&pred);
+        let mut ok = true;
+        for j in 0..z {
+            let psi = wrap_to(cage_angle + pitch * j as f64, TAU);
+            if !table_interpolate(rollers, nb, TAU, psi, &mut pred) {
+                ok = false;
+                break;
+            }
+            trial[3 + 3 * j..6 + 3 * j].copy_from_slice(&pred);
+        }
+        if ok {
+            x[..3 + 3 * z].copy_from_slice(&trial[..3 + 3 * z]);
+        }
+        self.trial = trial;
+        ok
     }
 
     /// Temporal predictor: when the cage moved little since the last solve and the one before
     /// (at most a tenth of the roller pitch each time) and the inputs changed along the same
     /// line (constant, or a ramp: a smooth time table), every unknown continues along its
-    /// own path: x + r (x - x_prev), r the ratio of this cage advance to the last one. `warm`
-    /// holds both solves (see `solve_in_plane`); on success its first n values are the
-    /// prediction. Far more accurate than the spatial predictor where the rollers move little
-    /// per step (slow shafts, small steps) and with rollers of different diameters.
-    fn extrapolate(&self, warm: &mut [f64], n: usize, cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+    /// own path: x + r (x - x_prev), r the ratio of this cage advance to the last one. `blocks`:
+    /// the last two solves' blocks (see `solve_in_plane`); `x` holds the last solution and
+    /// receives the prediction. Far more accurate than the spatial predictor where the rollers
+    /// move little per step (slow shafts, small steps) and with rollers of different diameters.
+    fn extrapolate(&self, x: &mut [f64], blocks: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
         if self.axisymmetric {
             return false;
         }
+        let n = x.len();
         let block = n + 1 + WARM_INPUTS;
         let pitch = TAU / self.geometry.z as f64;
-        let wrap = |a: f64| a - TAU * (a / TAU).round();
-        let d = wrap(cage_angle - warm[n]);
-        let d1 = wrap(warm[n] - warm[block + n]);
+        let wrap = |a: f64| a - TAU * round_int(a / TAU);
+        let d = wrap(cage_angle - blocks[n]);
+        let d1 = wrap(blocks[n] - blocks[block + n]);
         if !(d1.abs() > 0.0 && d1.abs() <= 0.1 * pitch && d.abs() <= 0.1 * pitch) {
             return false;
         }
         let ratio = d / d1;
-        let (u, u1) = (&warm[n + 1..block], &warm[block + n + 1..2 * block]);
+        let (u, u1) = (&blocks[n + 1..block], &blocks[block + n + 1..2 * block]);
         for i in 0..WARM_INPUTS {
             let step = now[i] - u[i];
             let last = u[i] - u1[i];
@@ -922,7 +1091,7 @@ impl QuasiStatic {
                 return false;
             }
         }
-        let (x, prev) = warm.split_at_mut(block);
+        let prev = &blocks[block..block + n];
         for i in 0..n {
             x[i] += ratio * (x[i] - prev[i]);
         }
