@@ -260,8 +260,9 @@ pub struct QuasiStatic {
     /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
     /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
-    /// Scratch for the unknowns of a solve (allocated once).
+    /// Scratch for the unknowns of a solve and for one roller's slice loads (allocated once).
     x: Vec<f64>,
+    local_scratch: Vec<f64>,
 }
 
 impl QuasiStatic {
@@ -301,6 +302,7 @@ impl QuasiStatic {
             skew,
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
             x: Vec::new(),
+            local_scratch: Vec::with_capacity(2 * geometry.slices),
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -594,6 +596,123 @@ impl QuasiStatic {
             merit = f64::INFINITY;
         }
         (max_r, merit, f_ref, ring)
+    }
+
+    /// The ring (cone) residual of [`QuasiStatic::evaluate`] from the current roller
+    /// evaluations (not axisymmetric).
+    fn ring_residual(&self, _x: &[f64], inputs: &Inputs) -> Vector3<f64> {
+        let mut ring = Vector3::new(inputs.fx, inputs.fy, inputs.fz);
+        for (e, st) in self.evals.iter().zip(&self.setup) {
+            ring[0] += e.f_cone[0];
+            ring[1] += e.f_cone[1] * st.cos_psi;
+            ring[2] += e.f_cone[1] * st.sin_psi;
+        }
+        if !self.geometry.axial || self.params.preload == Preload::Displacement {
+            ring[0] = 0.0;
+        }
+        ring
+    }
+
+    /// The residual max-norm, merit and reference force of [`QuasiStatic::evaluate`] from the
+    /// current roller evaluations and ring residual `ring` (not axisymmetric).
+    fn norms(&self, ring: &Vector3<f64>, inputs: &Inputs, fc: f64) -> (f64, f64, f64) {
+        let mut max_r: f64 = 0.0;
+        let mut merit = 0.0;
+        let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
+        for e in &self.evals {
+            for c in 0..3 {
+                let v = e.r[c];
+                max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+                merit += v * v;
+            }
+            f_ref = f_ref.max(e.qi).max(e.qo);
+        }
+        for c in 0..3 {
+            let v = ring[c];
+            max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+            merit += v * v;
+        }
+        if !merit.is_finite() {
+            merit = f64::INFINITY;
+        }
+        (max_r, merit, f_ref)
+    }
+
+    /// Lightly loaded rollers (total contact load below `light`: at the edge of the load zone
+    /// or outside it) barely move the cone, but their few touching slices switch on and off
+    /// from one Newton step to the next (a tilted roller rolling onto its end), so they can
+    /// hold the whole solve for many global iterations. Each such roller with a residual above
+    /// `target` takes its own Newton steps here with the cone held, one roller evaluation
+    /// each, with the global step's clamps; a step that does not lower its residual is undone.
+    /// The caller recomputes the ring residual (the roller's force on the cone changed by at
+    /// most `light`). Returns whether any roller moved.
+    fn relax_light_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, target: f64, light: f64) -> bool {
+        const LOCAL_ITERATIONS: usize = 10;
+        if self.axisymmetric {
+            return false;
+        }
+        let z = self.geometry.z;
+        let ns = self.geometry.slices;
+        let axial = self.geometry.axial;
+        let reg = Matrix3::identity() * self.regularisation;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
+        };
+        if !self.evals.iter().any(needs) {
+            return false;
+        }
+        let mut loads = std::mem::take(&mut self.slice_load_buffer);
+        let mut saved = std::mem::take(&mut self.local_scratch);
+        let mut moved = false;
+        for j in 0..z {
+            let roller_loads = &mut loads[2 * ns * j..2 * ns * (j + 1)];
+            for _ in 0..LOCAL_ITERATIONS {
+                if !needs(&self.evals[j]) {
+                    break;
+                }
+                let e = self.evals[j];
+                let size = e.r.amax();
+                let mut a = e.a - reg;
+                if !axial {
+                    a[(0, 0)] = -1.0;
+                }
+                let Some(a_inv) = a.try_inverse() else { break };
+                let mut dq = -(a_inv * e.r);
+                if !axial {
+                    dq[0] = 0.0;
+                }
+                let mut limit = self.max_step;
+                if e.gap > 0.0 {
+                    limit = limit.min(e.gap + 1e-9);
+                }
+                let largest = dq.amax();
+                if !largest.is_finite() {
+                    break;
+                }
+                if largest > limit {
+                    dq *= limit / largest;
+                }
+                let old = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
+                let q = [old[0] + dq[0], old[1] + dq[1], old[2] + dq[2]];
+                let st = self.setup[j];
+                let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
+                saved.clear();
+                saved.extend_from_slice(roller_loads);
+                let trial = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req, roller_loads);
+                if trial.r.amax() < size {
+                    x[3 + 3 * j..6 + 3 * j].copy_from_slice(&q);
+                    self.evals[j] = trial;
+                    moved = true;
+                } else {
+                    roller_loads.copy_from_slice(&saved);
+                    break;
+                }
+            }
+        }
+        self.local_scratch = saved;
+        self.slice_load_buffer = loads;
+        moved
     }
 
     /// Newton step for the current evaluations and ring residual.
@@ -1169,6 +1288,11 @@ impl QuasiStatic {
         let mut extrapolated = self.evals.iter().any(|e| e.extrapolated);
         let limit = self.runaway_limit();
         loop {
+            if max_r > tol * f_ref && self.relax_light_rollers(x, fc, m_fc, m_req, 0.1 * tol * f_ref, 1e-3 * f_ref) {
+                ring = self.ring_residual(x, inputs);
+                (max_r, merit, f_ref) = self.norms(&ring, inputs, fc);
+                extrapolated = self.evals.iter().any(|e| e.extrapolated);
+            }
             if max_r <= tol * f_ref {
                 return Ok(SolveReport {
                     iterations,
