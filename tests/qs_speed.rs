@@ -5,15 +5,17 @@
 //!     cargo test --release --test qs_speed -- --ignored --nocapture instructions
 //!
 //! runs each case under callgrind (valgrind) and prints instructions per doStep (machine
-//! independent, repeatable under load), Newton iterations per step and the in-process median
-//! wall time per doStep (a cross-check only: it depends on the machine and its load).
+//! independent, repeatable under load; 20 steps after 10, or QS_WARM, warm-up steps), Newton
+//! iterations per step and the in-process median wall time per doStep over 300 steps (a
+//! cross-check only: it depends on the machine and its load).
 //!
 //!     QS_DUMP=/tmp/qs_ref.txt cargo test --release --test qs_speed -- --ignored --nocapture dump
 //!     QS_REF=/tmp/qs_ref.txt  cargo test --release --test qs_speed -- --ignored --nocapture dump
 //!
 //! write every Real output of 20 steps of every case to a file, or compare with such a file
 //! (largest difference of each output over the steps and rollers, relative to the output's
-//! largest magnitude).
+//! largest magnitude). QS_TOL sets the solver tolerance (1e-10: a tightly converged reference);
+//! QS_CMP=file compares that file with QS_REF instead of this run.
 //!
 //! Cases (speed, Fx as the preset's operating point; Fy, xi, lubrication as named):
 //! - `combined`: radial load Fy (TRB130x230 10 kN, 32018X 35 kN, 32008 5 kN, CRB-TRILOBE
@@ -28,8 +30,13 @@ use trb::simulation::Simulation;
 use trb::variables as var;
 
 const H: f64 = 1e-3;
-const WARM_STEPS: usize = 10;
 const MEASURED_STEPS: usize = 20;
+
+/// Steps before the measured ones: 10, or QS_WARM (the warm start's azimuth table fills over
+/// the first tens of steps: QS_WARM=200 measures the steady state of a long run).
+fn warm_steps() -> usize {
+    std::env::var("QS_WARM").ok().and_then(|s| s.parse().ok()).unwrap_or(10)
+}
 
 /// (preset, case, Fy or None for the preset's, xi (rad), lubrication)
 fn cases() -> Vec<(&'static str, &'static str, Option<f64>, f64, i32)> {
@@ -52,8 +59,12 @@ fn build(preset: &str, fy: Option<f64>, xi: f64, lubrication: i32) -> Simulation
         s.set_real(var::FY, fy).unwrap();
     }
     s.set_real(var::XI, xi).unwrap();
+    if let Some(tol) = std::env::var("QS_TOL").ok().and_then(|t| t.parse().ok()) {
+        // the solver's tolerance (for a tightly converged reference)
+        s.set_real(var::TOLERANCE, tol).unwrap();
+    }
     s.initialize(0.0).unwrap();
-    for k in 0..WARM_STEPS {
+    for k in 0..warm_steps() {
         s.do_step(k as f64 * H, H).unwrap();
     }
     s
@@ -73,7 +84,7 @@ fn case_sim(name: &str) -> Simulation {
 fn qs_measured_steps(s: &mut Simulation, n: usize) -> i32 {
     let mut iterations = 0;
     for k in 0..n {
-        let t = (WARM_STEPS + k) as f64 * H;
+        let t = (warm_steps() + k) as f64 * H;
         s.do_step(t, H).unwrap();
         iterations += s.last_outputs().solver_iterations;
     }
@@ -90,7 +101,7 @@ fn kernel() {
     if std::env::var_os("QS_SEQ").is_some() {
         let mut seq = Vec::new();
         for k in 0..n {
-            s.do_step((WARM_STEPS + k) as f64 * H, H).unwrap();
+            s.do_step((warm_steps() + k) as f64 * H, H).unwrap();
             seq.push(s.last_outputs().solver_iterations);
         }
         println!("iterations per step {seq:?}");
@@ -113,6 +124,7 @@ fn callgrind_instructions(name: &str, n: usize) -> Option<f64> {
         .arg(&exe)
         .args(["--ignored", "--exact", "kernel", "--test-threads=1", "--nocapture"])
         .env("QS_CASE", name)
+        .env("QS_WARM", warm_steps().to_string())
         .env("QS_STEPS", n.to_string())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
@@ -153,7 +165,7 @@ fn instructions() {
         let mut times = Vec::new();
         let mut its = Vec::new();
         for k in 0..300 {
-            let t = (WARM_STEPS + k) as f64 * H;
+            let t = (warm_steps() + k) as f64 * H;
             let t0 = Instant::now();
             s.do_step(t, H).unwrap();
             times.push(t0.elapsed().as_secs_f64());
@@ -183,7 +195,7 @@ fn dump() {
         let mut s = case_sim(&name);
         let vars = var::expanded(s.n_rollers());
         for k in 0..MEASURED_STEPS {
-            let t = (WARM_STEPS + k) as f64 * H;
+            let t = (warm_steps() + k) as f64 * H;
             s.do_step(t, H).unwrap();
             for (vr, vname, row) in &vars {
                 if row.causality == var::Causality::Output && row.ty == var::VarType::Real {
@@ -195,6 +207,10 @@ fn dump() {
     }
     if let Ok(path) = std::env::var("QS_DUMP") {
         std::fs::write(path, &text).unwrap();
+    }
+    if let Ok(path) = std::env::var("QS_CMP") {
+        // compare that file instead of this run
+        text = std::fs::read_to_string(path).unwrap();
     }
     if let Ok(path) = std::env::var("QS_REF") {
         let reference = std::fs::read_to_string(path).unwrap();
@@ -231,11 +247,19 @@ fn dump() {
         }
         let mut overall: f64 = 0.0;
         let mut per_case: std::collections::BTreeMap<String, (f64, String)> = Default::default();
+        // and against the largest output of the same unit alone (forces against the largest
+        // force, moments against the largest moment, ...)
+        let mut per_case_unit: std::collections::BTreeMap<String, (f64, String)> = Default::default();
         for ((case, row), (scale, diff, what)) in &worst {
             if row == "solver.residual" {
                 continue;
             }
-            let floor = 1e-6 * unit_scale[&(case.clone(), unit_of(row))];
+            let unit = unit_scale[&(case.clone(), unit_of(row))];
+            let e = per_case_unit.entry(case.clone()).or_insert((0.0, String::new()));
+            if unit > 0.0 && diff / unit > e.0 {
+                *e = (diff / unit, row.clone());
+            }
+            let floor = 1e-6 * unit;
             let scale = scale.max(floor);
             let rel = if scale > 0.0 { diff / scale } else { *diff };
             let e = per_case.entry(case.clone()).or_insert((0.0, String::new()));
@@ -247,6 +271,12 @@ fn dump() {
         for (case, (rel, what)) in per_case {
             println!("{case:<26} max rel change {rel:.3e}  {what}");
         }
+        let mut overall_unit: f64 = 0.0;
+        for (case, (rel, row)) in per_case_unit {
+            println!("{case:<26} max change / largest output of its unit {rel:.3e}  {row}");
+            overall_unit = overall_unit.max(rel);
+        }
+        println!("overall max change relative to the largest output of its unit {overall_unit:.3e}");
         println!("overall max relative change {overall:.3e}");
     }
 }

@@ -40,7 +40,7 @@ fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
 }
 
 /// Bins per roller pitch of the azimuth table predictor (`QuasiStatic::table_predict`).
-const TABLE_BINS: usize = 16;
+const TABLE_BINS: usize = 64;
 
 /// `v` rounded to an integer (|v| < 2^51; no libm call on baseline x86-64, which lacks the
 /// SSE4.1 rounding instruction).
