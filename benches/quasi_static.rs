@@ -11,7 +11,13 @@ use trb::simulation::Simulation;
 use trb::variables as var;
 
 fn stepping(name: &str, setup: &[(u32, f64)]) -> impl FnMut() {
+    stepping_int(name, setup, var::FIDELITY, 0)
+}
+
+/// [`stepping`] with one Integer parameter set too.
+fn stepping_int(name: &str, setup: &[(u32, f64)], vr: u32, value: i32) -> impl FnMut() {
     let mut sim = Simulation::new(Bearing::preset(name).unwrap());
+    sim.set_integer(vr, value).unwrap();
     for (vr, v) in setup {
         sim.set_real(*vr, *v).unwrap();
     }
@@ -38,6 +44,15 @@ fn bench(c: &mut Criterion) {
     g.bench_function("TRB130x230_combined_Fy10kN_xi0.004deg_20slices", |b| b.iter(&mut f));
     let mut f = stepping("32018X", &[]);
     g.bench_function("32018X_D19_radial35kN_axial12970N_20slices", |b| b.iter(&mut f));
+    // issue 13: the combined-load and dry cases of the other presets (tests/qs_speed.rs)
+    let mut f = stepping("TRB130x230", &[(var::FY, 10_000.0)]);
+    g.bench_function("TRB130x230_combined_Fy10kN_20slices", |b| b.iter(&mut f));
+    let mut f = stepping_int("TRB130x230", &[(var::FY, 10_000.0)], var::LUBRICATION, 1);
+    g.bench_function("TRB130x230_dry_Fy10kN_20slices", |b| b.iter(&mut f));
+    let mut f = stepping("32008", &[(var::FY, 5_000.0)]);
+    g.bench_function("32008_combined_Fy5kN_20slices", |b| b.iter(&mut f));
+    let mut f = stepping("CRB-TRILOBE", &[(var::FY, 1_000.0)]);
+    g.bench_function("CRB-TRILOBE_combined_Fy1kN_20slices", |b| b.iter(&mut f));
     g.finish();
 }
 

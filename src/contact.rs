@@ -21,7 +21,7 @@ pub fn palmgren_roller_stiffness(length: f64) -> f64 {
 
 /// Where the Johnson law stops being trusted: ln(8 R / delta) - 1 >= 3, i.e. delta <= 8 R e^-4
 /// (about 0.15 R, far beyond any real interference). Beyond it the law continues linearly.
-const JOHNSON_LOG_FLOOR: f64 = 3.0;
+pub(crate) const JOHNSON_LOG_FLOOR: f64 = 3.0;
 
 /// Load-deflection law of one slice, constants precomputed per slice.
 #[derive(Debug, Clone)]

@@ -439,6 +439,99 @@ pub struct Outputs {
 }
 
 impl Outputs {
+    /// Copy every output of `o` into `self` without reallocating the per-roller arrays (the
+    /// element keeps a backup of the outputs every step; a derived `clone_from` allocates).
+    pub fn copy_from(&mut self, o: &Outputs) {
+        // destructured without `..`: a new output that is not copied here does not compile
+        let Outputs {
+            friction_torque,
+            friction_torque_raceway,
+            friction_torque_flange,
+            friction_torque_cage,
+            friction_torque_cone,
+            friction_torque_cup,
+            sliding_friction_max,
+            qc_max,
+            power_loss,
+            cone_x,
+            cone_y,
+            cone_z,
+            reaction_fx,
+            reaction_my,
+            reaction_mz,
+            tilt_max,
+            tilt_mean,
+            skew_max,
+            skew_mean,
+            qi_max,
+            qo_max,
+            qf_max,
+            loaded_rollers,
+            cage_speed,
+            solver_iterations,
+            solver_residual,
+            integrator_steps,
+            integrator_rhs,
+            integrator_rejected,
+            tilt,
+            skew,
+            qi,
+            qo,
+            qf,
+            qc,
+            azimuth,
+            nit,
+            not,
+            nft,
+            nis,
+            nos,
+            nfs,
+            sliding_friction
+        } = o;
+        self.friction_torque.clone_from(friction_torque);
+        self.friction_torque_raceway.clone_from(friction_torque_raceway);
+        self.friction_torque_flange.clone_from(friction_torque_flange);
+        self.friction_torque_cage.clone_from(friction_torque_cage);
+        self.friction_torque_cone.clone_from(friction_torque_cone);
+        self.friction_torque_cup.clone_from(friction_torque_cup);
+        self.sliding_friction_max.clone_from(sliding_friction_max);
+        self.qc_max.clone_from(qc_max);
+        self.power_loss.clone_from(power_loss);
+        self.cone_x.clone_from(cone_x);
+        self.cone_y.clone_from(cone_y);
+        self.cone_z.clone_from(cone_z);
+        self.reaction_fx.clone_from(reaction_fx);
+        self.reaction_my.clone_from(reaction_my);
+        self.reaction_mz.clone_from(reaction_mz);
+        self.tilt_max.clone_from(tilt_max);
+        self.tilt_mean.clone_from(tilt_mean);
+        self.skew_max.clone_from(skew_max);
+        self.skew_mean.clone_from(skew_mean);
+        self.qi_max.clone_from(qi_max);
+        self.qo_max.clone_from(qo_max);
+        self.qf_max.clone_from(qf_max);
+        self.loaded_rollers.clone_from(loaded_rollers);
+        self.cage_speed.clone_from(cage_speed);
+        self.solver_iterations.clone_from(solver_iterations);
+        self.solver_residual.clone_from(solver_residual);
+        self.integrator_steps.clone_from(integrator_steps);
+        self.integrator_rhs.clone_from(integrator_rhs);
+        self.integrator_rejected.clone_from(integrator_rejected);
+        self.tilt.clone_from(tilt);
+        self.skew.clone_from(skew);
+        self.qi.clone_from(qi);
+        self.qo.clone_from(qo);
+        self.qf.clone_from(qf);
+        self.qc.clone_from(qc);
+        self.azimuth.clone_from(azimuth);
+        self.nit.clone_from(nit);
+        self.not.clone_from(not);
+        self.nft.clone_from(nft);
+        self.nis.clone_from(nis);
+        self.nos.clone_from(nos);
+        self.nfs.clone_from(nfs);
+        self.sliding_friction.clone_from(sliding_friction);
+    }
     /// Zero outputs with per-roller arrays of length `z`.
     pub fn new(z: usize) -> Outputs {
         let v = || vec![0.0; z];

@@ -235,7 +235,7 @@ impl Simulation {
         self.state.inputs.validate(&self.bearing)?;
         self.ensure_model()?;
         let z = self.bearing.roller_count;
-        self.backup.clone_from(&self.state.outputs);
+        self.backup.copy_from(&self.state.outputs);
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
             Model::QuasiStatic(m) => {
@@ -258,7 +258,7 @@ impl Simulation {
         };
         if !st.outputs.all_finite() {
             // Nothing that is not finite ever leaves the element: keep the last valid outputs.
-            st.outputs.clone_from(&self.backup);
+            st.outputs.copy_from(&self.backup);
             return Err(ModelError::NoEquilibrium {
                 message: format!(
                     "the model produced non-finite outputs at t = {} (Fx = {}, Fy = {}, Fz = {}, speed = {}); the last valid outputs are kept; the inputs are outside the model's numerical range",

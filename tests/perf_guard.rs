@@ -86,5 +86,9 @@ const BASE_DP: (i32, i32) = (124, 745);
 const BASE_ROS: (i32, i32) = (83, 357);
 /// 500 steps x 2 evaluations (predictor-corrector) + the Gill start.
 const BASE_GMH_RHS: i32 = 1007;
-/// 2 Newton iterations per step (the spatial predictor's warm start).
-const BASE_QS_ITERATIONS: i32 = 100;
+/// About 1 Newton iteration per step while the azimuth table of the warm start fills (its
+/// predictor interpolates each roller's unknowns from solutions recorded at nearby azimuths in
+/// earlier steps, 64 bins per pitch), none once it has filled; the first steps still use the
+/// spatial predictor (2 each). Was 100 (2 per step with the spatial predictor alone) until
+/// the table predictor.
+const BASE_QS_ITERATIONS: i32 = 48;

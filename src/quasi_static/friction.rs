@@ -23,6 +23,7 @@ use crate::bearing::Bearing;
 use crate::contact::line_contact_half_width;
 use crate::geometry::{ContactLine, Geometry};
 use crate::model::{Inputs, Lubrication, Outputs, Parameters};
+use crate::fastmath as fm;
 use crate::tribology as tr;
 
 /// Per-slice weights the solver multiplies with the slice loads.
@@ -88,6 +89,43 @@ struct LineFriction {
     r_bar: f64,
 }
 
+/// What a raceway slice's friction needs of the speed, the oil and the slice's position only:
+/// every roller has the same kinematics, so these are computed once per slice position and
+/// raceway (and kept while the speed does not change) instead of per roller and slice. Each
+/// value is the one the per-slice formula computes (same operations in the same order), so
+/// the friction is bitwise unchanged; only the load-dependent part remains per slice.
+#[derive(Debug, Clone, Copy, Default)]
+struct SliceConst {
+    /// Entrainment and sliding speed (m/s), ln of the sliding speed (-inf at zero).
+    u_e: f64,
+    v_s: f64,
+    ln_vs: f64,
+    /// Kinematic slide-to-roll ratio of the boundary law.
+    boundary_slide_roll: f64,
+    /// Inlet heating (Gupta et al.): L^0.42 of the numerator and the whole denominator
+    /// 1 + 0.213 (1 + 2.23 s^0.83) L^0.64; `heated` false when L = 0 (factor 1).
+    heated: bool,
+    l042: f64,
+    heat_den: f64,
+    /// Hamrock film: r 2.922 U^0.692 G^0.470 (times W^-0.166 per slice) and E' r.
+    film_a: f64,
+    e_r: f64,
+    /// Rolling resistance: 29.2 r / alpha (G U)^0.648 (times W^0.246 l per slice), E' r l;
+    /// `rolls` false where the law gives zero whatever the load.
+    rolls: bool,
+    roll_a: f64,
+    e_r_l: f64,
+}
+
+/// [`SliceConst`] of both raceways at one speed.
+#[derive(Debug, Clone, Default)]
+struct SpeedCache {
+    /// |speed| these were computed for (NaN: none yet).
+    speed: f64,
+    cone: Vec<SliceConst>,
+    cup: Vec<SliceConst>,
+}
+
 /// Precomputed kinematics and oil data.
 #[derive(Debug, Clone)]
 pub struct FrictionModel {
@@ -109,6 +147,12 @@ pub struct FrictionModel {
     /// Full-film traction law; for law 0 the lubricated contact laws' data.
     traction: tr::TractionLaw,
     lubricant: tr::Lubricant,
+    /// Per-slice-position constants at the last speed (`traction` = 0 with EHL).
+    cache: SpeedCache,
+    /// Solve the thermal Eyring film equation by Halley's method (fidelity 0); Newton's, as
+    /// the dynamic model does, for the quasi-static start of the dynamic model (its outputs
+    /// bit for bit as before).
+    halley: bool,
 }
 
 impl FrictionModel {
@@ -166,6 +210,11 @@ impl FrictionModel {
             flange_mu0: p.flange_mu0,
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
+            cache: SpeedCache {
+                speed: f64::NAN,
+                ..SpeedCache::default()
+            },
+            halley: p.fidelity == crate::model::Fidelity::QuasiStatic,
         }
     }
 
@@ -175,11 +224,129 @@ impl FrictionModel {
         lubrication == Lubrication::Ehl && self.traction == tr::TractionLaw::ThermalEyring
     }
 
+    /// The speed-dependent constants of every slice position of one raceway (see
+    /// [`SliceConst`]), at |speed| `speed_abs` > 0.
+    fn slice_consts(&self, line: &ContactLine, weights: &SliceWeights, speed_abs: f64, out: &mut Vec<SliceConst>) {
+        let e_prime = self.lubricant.e_prime;
+        out.clear();
+        for k in 0..weights.entrain.len() {
+            let u_e = speed_abs * weights.entrain[k];
+            let v_s = speed_abs * weights.slide[k];
+            let r_bar = line.r_bar[k];
+            let mut c = SliceConst {
+                u_e,
+                v_s,
+                ln_vs: if v_s > 0.0 { fm::ln(v_s) } else { f64::NEG_INFINITY },
+                boundary_slide_roll: if weights.entrain[k] > 0.0 {
+                    weights.slide[k] / weights.entrain[k]
+                } else {
+                    0.0
+                },
+                ..SliceConst::default()
+            };
+            if u_e > 0.0 {
+                // tr::thermal_reduction(load, ph_e, v_s / u_e) without its load-dependent part
+                let load = self.lubricant.inlet_heating * u_e * u_e;
+                if load > 0.0 {
+                    let ln_l = fm::ln(load);
+                    let s = (v_s / u_e).abs().min(2.0);
+                    let s083 = if s > 0.0 { fm::exp(0.83 * fm::ln(s)) } else { 0.0 };
+                    c.heated = true;
+                    c.l042 = fm::exp(0.42 * ln_l);
+                    c.heat_den = 1.0 + 0.213 * (1.0 + 2.23 * s083) * fm::exp(0.64 * ln_l);
+                }
+                // tr::film_line up to its load factor
+                let u = self.eta0 * u_e / (e_prime * r_bar);
+                let g = self.alpha * e_prime;
+                c.film_a = r_bar * 2.922 * fm::powf(u, 0.692) * fm::powf(g, 0.470);
+                c.e_r = e_prime * r_bar;
+                // tr::rolling_resistance up to its load factor
+                let l = self.slice_len;
+                if self.alpha > 0.0 && l > 0.0 {
+                    let gu = self.alpha * self.eta0 * u_e / r_bar;
+                    c.rolls = true;
+                    c.roll_a = 29.2 * r_bar / self.alpha * fm::powf(gu, 0.648);
+                    c.e_r_l = e_prime * r_bar * l;
+                }
+            }
+            out.push(c);
+        }
+    }
+
+    /// Inlet heating factor of a slice at Hertz pressure over E' `ph_e` (tr::thermal_reduction).
+    #[inline(always)]
+    fn heating(c: &SliceConst, ph_e: f64) -> f64 {
+        if !c.heated {
+            return 1.0;
+        }
+        let num = 1.0 - 13.2 * ph_e * c.l042;
+        (num / c.heat_den).max(tr::film::MIN_THERMAL_FACTOR)
+    }
+
     /// One raceway contact, slice by slice (`traction` = 0): each loaded slice's traction at
     /// its own load, pressure, entrainment and sliding speed (the law is far from linear in
     /// the slide-to-roll ratio, so a mean over the line would misplace the plateau), and its
-    /// EHL rolling resistance on both surfaces.
-    fn raceway_sliced(&self, line: &ContactLine, weights: &SliceWeights, loads: &[f64], speed: f64) -> RacewayFriction {
+    /// EHL rolling resistance on both surfaces. `consts`: the line's [`SliceConst`] at this
+    /// speed (empty at standstill: the laws' own zero-speed branches).
+    fn raceway_sliced<const HALLEY: bool>(
+        &self,
+        line: &ContactLine,
+        weights: &SliceWeights,
+        consts: &[SliceConst],
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        if consts.is_empty() {
+            return self.raceway_sliced_generic(line, weights, loads, speed);
+        }
+        let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        let e_prime = self.lubricant.e_prime;
+        let mut f = RacewayFriction::default();
+        for (k, &q) in loads.iter().enumerate() {
+            if !(q > 0.0) {
+                continue;
+            }
+            let c = &consts[k];
+            let w = q / self.slice_len;
+            let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
+            let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
+            let (mu, rolling) = if c.u_e > 0.0 {
+                let p_h = 4.0 / std::f64::consts::PI * p_mean;
+                let heating = Self::heating(c, p_h / e_prime);
+                let h_iso = c.film_a * fm::powf(w / c.e_r, -0.166);
+                let mu = if w > 0.0 {
+                    let h = heating * h_iso;
+                    let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
+                    if HALLEY {
+                        self.lubricant
+                            .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                    } else {
+                        self.lubricant
+                            .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                    }
+                } else {
+                    0.0
+                };
+                let rolling = if c.rolls {
+                    heating * (c.roll_a * fm::powf(q / c.e_r_l, 0.246) * self.slice_len)
+                } else {
+                    0.0
+                };
+                (mu, rolling)
+            } else {
+                // no entrainment at this slice: no film, no rolling resistance
+                (self.lubricant.raceway_mu(w, p_mean, 0.0, 0.0, c.v_s, c.boundary_slide_roll), 0.0)
+            };
+            f.torque += mu * q * weights.slide[k] + 2.0 * rolling * weights.entrain[k];
+            f.skew += mu * q * sign * weights.skew[k];
+            f.slide_force += mu * q * sign * weights.sign[k];
+            f.rolling += rolling;
+        }
+        f
+    }
+
+    /// [`FrictionModel::raceway_sliced`] straight from the laws (at standstill).
+    fn raceway_sliced_generic(&self, line: &ContactLine, weights: &SliceWeights, loads: &[f64], speed: f64) -> RacewayFriction {
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let e_prime = self.lubricant.e_prime;
         let mut f = RacewayFriction::default();
@@ -216,14 +383,33 @@ impl FrictionModel {
     }
 
     /// One raceway contact: friction power per unit speed, skew moment on the roller, net
-    /// sliding traction on the ring and rolling resistance.
-    fn raceway(&self, e_prime: f64, line: &LineFriction, s: &LineSums, speed: f64, lubrication: Lubrication) -> RacewayFriction {
+    /// sliding traction on the ring and rolling resistance. `loads` the line's slice loads.
+    #[allow(clippy::too_many_arguments)]
+    fn raceway(
+        &self,
+        e_prime: f64,
+        line: &LineFriction,
+        weights: &SliceWeights,
+        s: &LineSums,
+        loads: &[f64],
+        speed: f64,
+        lubrication: Lubrication,
+    ) -> RacewayFriction {
         if s.q <= 0.0 {
             return RacewayFriction::default();
         }
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        // Sums of q |v_s| per unit cone speed (sliding power weight), q s sgn(v_s) (skew moment
+        // weight) and q sgn(v_s) (net sliding traction per unit friction coefficient).
+        // (unloaded slices add q x = +-0, which changes no sum)
+        let (mut q_slide, mut q_skew, mut q_sign) = (0.0, 0.0, 0.0);
+        for (((&q, &slide), &skew), &sign) in loads.iter().zip(&weights.slide).zip(&weights.skew).zip(&weights.sign) {
+            q_slide += q * slide;
+            q_skew += q * skew;
+            q_sign += q * sign;
+        }
         // Load-weighted mean sliding speed ratio along the line.
-        let slide = s.q_slide / s.q;
+        let slide = q_slide / s.q;
         let (mu, f_roll) = match lubrication {
             Lubrication::Dry => (tr::dry_mu(self.mu, speed * slide).abs(), 0.0),
             Lubrication::Ehl => {
@@ -242,10 +428,10 @@ impl FrictionModel {
         };
         RacewayFriction {
             // rolling resistance on both surfaces: 2 F u_e
-            torque: mu * s.q_slide + 2.0 * f_roll * line.mid.entrain,
-            skew: mu * sign * s.q_skew,
+            torque: mu * q_slide + 2.0 * f_roll * line.mid.entrain,
+            skew: mu * sign * q_skew,
             // Traction on the ring = +mu q sgn(v_s) e_t with v_s = roller - ring.
-            slide_force: mu * sign * s.q_sign,
+            slide_force: mu * sign * q_sign,
             rolling: f_roll,
         }
     }
@@ -253,7 +439,7 @@ impl FrictionModel {
     /// Friction torque parts from the converged roller evaluations; fills the skew moments
     /// of `out`. With `evaluated` = 1 (axisymmetric solve) roller 1 stands for all rollers.
     pub(super) fn evaluate(
-        &self,
+        &mut self,
         g: &Geometry,
         evals: &[RollerEval],
         evaluated: usize,
@@ -268,18 +454,37 @@ impl FrictionModel {
         let (ri, ro) = self.ring_radii;
         let sliced = self.needs_slice_loads(lubrication);
         let ns = g.slices;
+        let mut cache = std::mem::take(&mut self.cache);
+        if sliced && cache.speed.to_bits() != speed.abs().to_bits() {
+            cache.speed = speed.abs();
+            if speed != 0.0 {
+                self.slice_consts(&g.cone, &self.cone_weights, speed.abs(), &mut cache.cone);
+                self.slice_consts(&g.cup, &self.cup_weights, speed.abs(), &mut cache.cup);
+            } else {
+                cache.cone.clear();
+                cache.cup.clear();
+            }
+        }
         for (j, e) in evals.iter().enumerate().take(evaluated) {
+            // slice_loads: per roller, the cone's slices then the cup's
+            let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
             let (cone, cup) = if sliced {
-                // slice_loads: per roller, the cone's slices then the cup's
-                let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
-                (
-                    self.raceway_sliced(&g.cone, &self.cone_weights, &loads[..ns], speed),
-                    self.raceway_sliced(&g.cup, &self.cup_weights, &loads[ns..], speed),
-                )
+                let (cone, cup) = (&loads[..ns], &loads[ns..]);
+                if self.halley {
+                    (
+                        self.raceway_sliced::<true>(&g.cone, &self.cone_weights, &cache.cone, cone, speed),
+                        self.raceway_sliced::<true>(&g.cup, &self.cup_weights, &cache.cup, cup, speed),
+                    )
+                } else {
+                    (
+                        self.raceway_sliced::<false>(&g.cone, &self.cone_weights, &cache.cone, cone, speed),
+                        self.raceway_sliced::<false>(&g.cup, &self.cup_weights, &cache.cup, cup, speed),
+                    )
+                }
             } else {
                 (
-                    self.raceway(g.e_prime, &self.cone, &e.cone, speed, lubrication),
-                    self.raceway(g.e_prime, &self.cup, &e.cup, speed, lubrication),
+                    self.raceway(g.e_prime, &self.cone, &self.cone_weights, &e.cone, &loads[..ns], speed, lubrication),
+                    self.raceway(g.e_prime, &self.cup, &self.cup_weights, &e.cup, &loads[ns..], speed, lubrication),
                 )
             };
             parts.raceway += cone.torque + cup.torque;
@@ -304,7 +509,11 @@ impl FrictionModel {
                         match self.traction {
                             tr::TractionLaw::ThermalEyring => {
                                 let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 2.0 };
-                                self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                if self.halley {
+                                    self.lubricant.rib_force_halley(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                } else {
+                                    self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                }
                             }
                             tr::TractionLaw::NewtonianEyring => {
                                 let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
@@ -322,6 +531,7 @@ impl FrictionModel {
             }
             out.sliding_friction[j] = sliding;
         }
+        self.cache = cache;
         let copies = evals.len() as f64 / evaluated as f64;
         for j in evaluated..evals.len() {
             out.nis[j] = out.nis[0];

@@ -18,6 +18,7 @@
 //! residual, so converged solutions are exact).
 
 mod friction;
+mod simd;
 mod skew;
 pub mod studies;
 
@@ -29,6 +30,94 @@ use nalgebra::{Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 use std::f64::consts::TAU;
 
 pub use friction::{FrictionModel, SliceWeights};
+
+/// Inputs kept with a warm start (for the temporal predictor).
+const WARM_INPUTS: usize = 7;
+
+/// The inputs of a solve as the warm start keeps them.
+fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
+    [i.speed, i.xi, i.zeta, i.fx, i.fy, i.fz, i.axial_displacement]
+}
+
+/// Bins per roller pitch of the azimuth table predictor (`QuasiStatic::table_predict`).
+const TABLE_BINS: usize = 64;
+
+/// `v` rounded to an integer (|v| < 2^51; no libm call on baseline x86-64, which lacks the
+/// SSE4.1 rounding instruction).
+#[inline(always)]
+fn round_int(v: f64) -> f64 {
+    const ROUNDER: f64 = 6_755_399_441_055_744.0;
+    (v + ROUNDER) - ROUNDER
+}
+
+/// `a` wrapped into [0, period) (up to rounding at the ends).
+#[inline(always)]
+fn wrap_to(a: f64, period: f64) -> f64 {
+    let w = a - period * round_int(a / period);
+    if w < 0.0 {
+        w + period
+    } else {
+        w
+    }
+}
+
+/// Cubic interpolation at `t` in a periodic table of `nb` bins over `period` (4 values per bin:
+/// position, then three values; NaN position: empty) on the two nearest filled nodes on each
+/// side of `t` within two pitches (TABLE_BINS bins each way) or half the period.
+fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f64; 3]) -> bool {
+    let b = ((t / period * nb as f64) as usize).min(nb - 1);
+    let reach = (2 * TABLE_BINS).min(nb / 2);
+    let offset = |bin: usize| {
+        let d = nodes[4 * bin] - t;
+        d - period * round_int(d / period)
+    };
+    // two nodes at or below t, nearest first, then two above
+    let (mut below, mut nbelow) = ([(0.0, 0usize); 2], 0);
+    let (mut above, mut nabove) = ([(0.0, 0usize); 2], 0);
+    for k in 0..=reach {
+        let bin = (b + nb - k % nb) % nb;
+        if nbelow < 2 && !nodes[4 * bin].is_nan() {
+            let d = offset(bin);
+            if d <= 0.0 && (nbelow == 0 || d < below[0].0) {
+                below[nbelow] = (d, bin);
+                nbelow += 1;
+            }
+        }
+        let bin = (b + k) % nb;
+        if nabove < 2 && !nodes[4 * bin].is_nan() {
+            let d = offset(bin);
+            if d > 0.0 && (nabove == 0 || d > above[0].0) {
+                above[nabove] = (d, bin);
+                nabove += 1;
+            }
+        }
+        if nbelow == 2 && nabove == 2 {
+            break;
+        }
+    }
+    if nbelow < 2 || nabove < 2 {
+        return false;
+    }
+    // Lagrange weights at offset 0 of the nodes at offsets d
+    let node = [below[1], below[0], above[0], above[1]];
+    let d = [node[0].0, node[1].0, node[2].0, node[3].0];
+    *out = [0.0; 3];
+    for i in 0..4 {
+        let (mut num, mut den) = (1.0, 1.0);
+        for m in 0..4 {
+            if m != i {
+                num *= -d[m];
+                den *= d[i] - d[m];
+            }
+        }
+        let l = num / den;
+        let v = &nodes[4 * node[i].1 + 1..4 * node[i].1 + 4];
+        for c in 0..3 {
+            out[c] += l * v[c];
+        }
+    }
+    out.iter().all(|v| v.is_finite())
+}
 
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
@@ -72,43 +161,58 @@ struct LineSums {
     k: f64,
     k_lever: f64,
     k_lever2: f64,
-    /// Sum of q |v_s| per unit cone speed (sliding power weight) and of q s sgn(v_s)
-    /// (skew moment weight) over the slices, and the number of loaded slices.
-    q_slide: f64,
-    q_skew: f64,
-    /// Sum of q sgn(v_s): the net sliding traction per unit friction coefficient.
-    q_sign: f64,
+    /// Number of loaded slices.
     loaded: u32,
     /// Largest interference over the slices (negative: the line is separated by that gap).
     max_delta: f64,
     extrapolated: bool,
 }
 
-/// Per-slice constants of one contact line, as flat arrays for the slice loop.
+/// Per-slice constants of one contact line, as flat arrays for the slice loop, padded to an
+/// even length for the two-lane kernel (`simd.rs`; a padding slice never touches: lever and
+/// chi 0, crown +inf).
 #[derive(Debug, Clone)]
 struct SliceTable {
+    /// Number of slices (the arrays may be one longer).
+    n: usize,
+    /// Use the two-lane kernel (`simd.rs`). Not for the quasi-static start of the dynamic
+    /// model: the scalar loop gives that start bit for bit as before the kernel existed.
+    vector: bool,
+    /// ln(8 R) per slice of the Johnson law (empty for Palmgren), and an interference below
+    /// which no slice of the line is beyond the law's validity (ln(8R/delta) - 1 >= 3).
+    ln_8r: Vec<f64>,
+    johnson_limit: f64,
     lever: Vec<f64>,
     /// lever / L_s
     lever_s: Vec<f64>,
     /// cross(P, n) about the bearing origin (cone only; zeros for the cup).
     chi: Vec<f64>,
     crown: Vec<f64>,
-    slide: Vec<f64>,
-    skew: Vec<f64>,
-    sign: Vec<f64>,
 }
 
 impl SliceTable {
-    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, w: &SliceWeights) -> SliceTable {
+    fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, vector: bool) -> SliceTable {
         let n = line.lever.len();
+        let padded = (n + 1) & !1;
+        let pad = |mut v: Vec<f64>, fill: f64| {
+            v.resize(padded, fill);
+            v
+        };
         SliceTable {
-            lever: line.lever.clone(),
-            lever_s: line.lever.iter().map(|l| l / ls).collect(),
-            chi: chi.map(|c| c.to_vec()).unwrap_or_else(|| vec![0.0; n]),
-            crown: crown.to_vec(),
-            slide: w.slide.clone(),
-            skew: w.skew.clone(),
-            sign: w.sign.clone(),
+            n,
+            vector,
+            ln_8r: match &line.law {
+                LineLaw::Johnson { ln_8r, .. } => pad(ln_8r[..n].to_vec(), 0.0),
+                LineLaw::Palmgren { .. } => Vec::new(),
+            },
+            johnson_limit: match &line.law {
+                LineLaw::Johnson { ln_8r, .. } => 0.999 * ln_8r[..n].iter().fold(f64::INFINITY, |m, l| m.min((l - (contact::JOHNSON_LOG_FLOOR + 1.0)).exp())),
+                LineLaw::Palmgren { .. } => f64::INFINITY,
+            },
+            lever: pad(line.lever.clone(), 0.0),
+            lever_s: pad(line.lever.iter().map(|l| l / ls).collect(), 0.0),
+            chi: pad(chi.map(|c| c[..n].to_vec()).unwrap_or_else(|| vec![0.0; n]), 0.0),
+            crown: pad(crown[..n].to_vec(), f64::INFINITY),
         }
     }
 }
@@ -153,9 +257,12 @@ pub struct QuasiStatic {
     regularisation: f64,
     /// The roller skew model [D19] (`skewModel` = true).
     skew: Option<skew::SkewSetup>,
-    /// Converged slice loads per roller (cone slices, then cup slices) for the friction model
-    /// of `traction` = 0; kept to allocate once.
+    /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
+    /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
+    /// Scratch for the unknowns of a solve and for one roller's slice loads (allocated once).
+    x: Vec<f64>,
+    local_scratch: Vec<f64>,
 }
 
 impl QuasiStatic {
@@ -185,14 +292,17 @@ impl QuasiStatic {
             line.law.load(mid, 1e-6).1 * geometry.slices as f64
         };
         let friction = FrictionModel::new(bearing, params, &geometry, cage_ratio, spin_ratio);
-        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), &friction.cone_weights);
-        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, &friction.cup_weights);
+        let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
+        let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
+        let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
             skew,
-            slice_load_buffer: Vec::new(),
+            slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
+            x: Vec::new(),
+            local_scratch: Vec::with_capacity(2 * geometry.slices),
             axisymmetric: false,
             cone_table,
             cup_table,
@@ -287,38 +397,49 @@ impl QuasiStatic {
 
     /// Sums over the slices of one contact line. The interference of slice k is affine in
     /// the unknowns: delta_k = base - theta lever_k + gamma chi_k - crown_k. One specialised
-    /// loop per contact law (no per-slice dispatch).
+    /// loop per contact law (no per-slice dispatch). The slice loads go to `loads` (0 where
+    /// the slice is not in contact).
     #[inline]
-    fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64) -> LineSums {
+    fn line_sums(line: &crate::geometry::ContactLine, t: &SliceTable, base: f64, theta: f64, gamma: f64, loads: &mut [f64]) -> LineSums {
+        #[cfg(target_arch = "x86_64")]
+        if t.vector {
+            let law = match &line.law {
+                LineLaw::Johnson { c, .. } => simd::Law::Johnson { c: *c, ln_8r: &t.ln_8r },
+                LineLaw::Palmgren { k } => simd::Law::Palmgren { k: *k },
+            };
+            if let Some(s) = simd::line_sums(t, t.n, law, base, theta, gamma, loads) {
+                return s;
+            }
+        }
         match &line.law {
             LineLaw::Johnson { c, ln_8r } => {
-                let ln_8r = &ln_8r[..t.lever.len()];
-                Self::line_sums_with(t, base, theta, gamma, |k, d| contact::johnson(*c, ln_8r[k], d))
+                let ln_8r = &ln_8r[..t.n];
+                Self::line_sums_with(t, base, theta, gamma, loads, |k, d| contact::johnson(*c, ln_8r[k], d))
             }
-            LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, |_, d| contact::palmgren(*k, d)),
+            LineLaw::Palmgren { k } => Self::line_sums_with(t, base, theta, gamma, loads, |_, d| contact::palmgren(*k, d)),
         }
     }
 
     #[inline(always)]
-    fn line_sums_with<L: Fn(usize, f64) -> (f64, f64, bool)>(t: &SliceTable, base: f64, theta: f64, gamma: f64, law: L) -> LineSums {
+    fn line_sums_with<L: Fn(usize, f64) -> (f64, f64, bool)>(
+        t: &SliceTable,
+        base: f64,
+        theta: f64,
+        gamma: f64,
+        loads: &mut [f64],
+        law: L,
+    ) -> LineSums {
         let mut s = LineSums {
             max_delta: f64::NEG_INFINITY,
             ..LineSums::default()
         };
-        let n = t.lever.len();
-        let (lever, lever_s, chi, crown, slide, skew, sign) = (
-            &t.lever[..n],
-            &t.lever_s[..n],
-            &t.chi[..n],
-            &t.crown[..n],
-            &t.slide[..n],
-            &t.skew[..n],
-            &t.sign[..n],
-        );
+        let n = t.n;
+        let (lever, lever_s, chi, crown, loads) = (&t.lever[..n], &t.lever_s[..n], &t.chi[..n], &t.crown[..n], &mut loads[..n]);
         for k in 0..n {
             let delta = base - theta * lever[k] + gamma * chi[k] - crown[k];
             s.max_delta = s.max_delta.max(delta);
             if delta <= 0.0 {
+                loads[k] = 0.0;
                 continue;
             }
             let (q, dq, ext) = law(k, delta);
@@ -329,17 +450,17 @@ impl QuasiStatic {
             s.k += dq;
             s.k_lever += dq * lv;
             s.k_lever2 += dq * lv * lv;
-            s.q_slide += q * slide[k];
-            s.q_skew += q * skew[k];
-            s.q_sign += q * sign[k];
+            loads[k] = q;
             s.loaded += 1;
             s.extrapolated |= ext;
         }
         s
     }
 
-    /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`.
-    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64) -> RollerEval {
+    /// Evaluate roller `j` with cone local displacement (dx, dr) and roller unknowns `q`; its
+    /// slice loads go to `loads` (cone slices, then cup slices).
+    #[allow(clippy::too_many_arguments)]
+    fn eval_roller(&self, j: usize, cone: [f64; 2], q: [f64; 3], fc: f64, m_fc: f64, m_req: f64, loads: &mut [f64]) -> RollerEval {
         let g = &self.geometry;
         let st = &self.setup[j];
         let ls = self.ls;
@@ -352,11 +473,12 @@ impl QuasiStatic {
         // Cone: delta = (dx - a) n_x + (dr - rho) n_r + gamma chi - theta lever + gap - crown
         let ni = g.cone.normal;
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
-        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma);
+        let (cone_loads, cup_loads) = loads.split_at_mut(g.slices);
+        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma, cone_loads);
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
-        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0);
+        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0, cup_loads);
 
         let add_line = |e: &mut RollerEval, n: [f64; 2], s: &LineSums, on_cone: bool| {
             let nv = Vector3::new(n[0], n[1], 0.0);
@@ -431,11 +553,13 @@ impl QuasiStatic {
         let mut merit = 0.0;
         let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
         let evaluated = if self.axisymmetric { 1 } else { z };
+        let ns = self.geometry.slices;
+        let mut loads = std::mem::take(&mut self.slice_load_buffer);
         for j in 0..evaluated {
             let st = self.setup[j];
             let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
             let q = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
-            let e = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req);
+            let e = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req, &mut loads[2 * ns * j..2 * ns * (j + 1)]);
             ring[0] += e.f_cone[0];
             ring[1] += e.f_cone[1] * st.cos_psi;
             ring[2] += e.f_cone[1] * st.sin_psi;
@@ -448,6 +572,7 @@ impl QuasiStatic {
             f_ref = f_ref.max(e.qi).max(e.qo);
             self.evals[j] = e;
         }
+        self.slice_load_buffer = loads;
         if self.axisymmetric {
             let e = self.evals[0];
             for j in 1..z {
@@ -471,6 +596,123 @@ impl QuasiStatic {
             merit = f64::INFINITY;
         }
         (max_r, merit, f_ref, ring)
+    }
+
+    /// The ring (cone) residual of [`QuasiStatic::evaluate`] from the current roller
+    /// evaluations (not axisymmetric).
+    fn ring_residual(&self, _x: &[f64], inputs: &Inputs) -> Vector3<f64> {
+        let mut ring = Vector3::new(inputs.fx, inputs.fy, inputs.fz);
+        for (e, st) in self.evals.iter().zip(&self.setup) {
+            ring[0] += e.f_cone[0];
+            ring[1] += e.f_cone[1] * st.cos_psi;
+            ring[2] += e.f_cone[1] * st.sin_psi;
+        }
+        if !self.geometry.axial || self.params.preload == Preload::Displacement {
+            ring[0] = 0.0;
+        }
+        ring
+    }
+
+    /// The residual max-norm, merit and reference force of [`QuasiStatic::evaluate`] from the
+    /// current roller evaluations and ring residual `ring` (not axisymmetric).
+    fn norms(&self, ring: &Vector3<f64>, inputs: &Inputs, fc: f64) -> (f64, f64, f64) {
+        let mut max_r: f64 = 0.0;
+        let mut merit = 0.0;
+        let mut f_ref: f64 = inputs.fx.abs().max(inputs.fy.abs()).max(inputs.fz.abs()).max(fc.abs()).max(1.0);
+        for e in &self.evals {
+            for c in 0..3 {
+                let v = e.r[c];
+                max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+                merit += v * v;
+            }
+            f_ref = f_ref.max(e.qi).max(e.qo);
+        }
+        for c in 0..3 {
+            let v = ring[c];
+            max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
+            merit += v * v;
+        }
+        if !merit.is_finite() {
+            merit = f64::INFINITY;
+        }
+        (max_r, merit, f_ref)
+    }
+
+    /// Lightly loaded rollers (total contact load below `light`: at the edge of the load zone
+    /// or outside it) barely move the cone, but their few touching slices switch on and off
+    /// from one Newton step to the next (a tilted roller rolling onto its end), so they can
+    /// hold the whole solve for many global iterations. Each such roller with a residual above
+    /// `target` takes its own Newton steps here with the cone held, one roller evaluation
+    /// each, with the global step's clamps; a step that does not lower its residual is undone.
+    /// The caller recomputes the ring residual (the roller's force on the cone changed by at
+    /// most `light`). Returns whether any roller moved.
+    fn relax_light_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, target: f64, light: f64) -> bool {
+        const LOCAL_ITERATIONS: usize = 10;
+        if self.axisymmetric {
+            return false;
+        }
+        let z = self.geometry.z;
+        let ns = self.geometry.slices;
+        let axial = self.geometry.axial;
+        let reg = Matrix3::identity() * self.regularisation;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
+        };
+        if !self.evals.iter().any(needs) {
+            return false;
+        }
+        let mut loads = std::mem::take(&mut self.slice_load_buffer);
+        let mut saved = std::mem::take(&mut self.local_scratch);
+        let mut moved = false;
+        for j in 0..z {
+            let roller_loads = &mut loads[2 * ns * j..2 * ns * (j + 1)];
+            for _ in 0..LOCAL_ITERATIONS {
+                if !needs(&self.evals[j]) {
+                    break;
+                }
+                let e = self.evals[j];
+                let size = e.r.amax();
+                let mut a = e.a - reg;
+                if !axial {
+                    a[(0, 0)] = -1.0;
+                }
+                let Some(a_inv) = a.try_inverse() else { break };
+                let mut dq = -(a_inv * e.r);
+                if !axial {
+                    dq[0] = 0.0;
+                }
+                let mut limit = self.max_step;
+                if e.gap > 0.0 {
+                    limit = limit.min(e.gap + 1e-9);
+                }
+                let largest = dq.amax();
+                if !largest.is_finite() {
+                    break;
+                }
+                if largest > limit {
+                    dq *= limit / largest;
+                }
+                let old = [x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]];
+                let q = [old[0] + dq[0], old[1] + dq[1], old[2] + dq[2]];
+                let st = self.setup[j];
+                let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
+                saved.clear();
+                saved.extend_from_slice(roller_loads);
+                let trial = self.eval_roller(j, [x[0], dr], q, fc, m_fc, m_req, roller_loads);
+                if trial.r.amax() < size {
+                    x[3 + 3 * j..6 + 3 * j].copy_from_slice(&q);
+                    self.evals[j] = trial;
+                    moved = true;
+                } else {
+                    roller_loads.copy_from_slice(&saved);
+                    break;
+                }
+            }
+        }
+        self.local_scratch = saved;
+        self.slice_load_buffer = loads;
+        moved
     }
 
     /// Newton step for the current evaluations and ring residual.
@@ -772,13 +1014,26 @@ impl QuasiStatic {
         let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
 
-        // The warm start holds the unknowns and, last, the cage angle they were solved at.
-        let cold = warm.len() != n + 1;
-        let previous_angle = if cold { cage_angle } else { warm[n] };
-        warm.resize(n, 0.0);
-        let mut x = std::mem::take(warm);
-        if !cold {
-            self.predict(&mut x, cage_angle - previous_angle);
+        // The warm start: the unknowns, the cage angle and the inputs they were solved at (a
+        // block of n + 1 + WARM_INPUTS; n + 1 from an older caller: no inputs), the same block
+        // of the solve before, and the azimuth table of converged solutions (`table_record`).
+        // It stays in place; the unknowns are solved in a scratch vector.
+        let block = n + 1 + WARM_INPUTS;
+        let full = 2 * block + self.table_len();
+        let cold = !(warm.len() == n + 1 || warm.len() == block || warm.len() == full);
+        let now = warm_inputs(inputs);
+        let mut x = std::mem::take(&mut self.x);
+        x.clear();
+        if cold {
+            x.resize(n, 0.0);
+        } else {
+            x.extend_from_slice(&warm[..n]);
+            let predicted = warm.len() == full
+                && (self.extrapolate(&mut x, &warm[..2 * block], cage_angle, &now)
+                    || self.table_predict(&warm[2 * block..], &mut x, cage_angle, &now));
+            if !predicted {
+                self.predict(&mut x, cage_angle - warm[n]);
+            }
         }
         let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
             (false, _) => Some(0.0),
@@ -827,15 +1082,147 @@ impl QuasiStatic {
                     }
                     None => {
                         *warm = Vec::new();
+                        self.x = x;
                         return Err(first);
                     }
                 }
             }
         };
         self.write_outputs(&x, inputs, report, out);
-        x.push(cage_angle);
-        *warm = x;
+        if warm.len() == full {
+            // this solve's block becomes the previous one
+            warm.copy_within(0..block, block);
+        } else {
+            // from a shorter (or no) warm start: its block, if any, is the previous one (inputs
+            // unknown if it had none), the table empty (allocates on the first solves only)
+            let mut w = vec![f64::NAN; full];
+            if !cold {
+                let m = warm.len().min(block);
+                w[block..block + m].copy_from_slice(&warm[..m]);
+            }
+            *warm = w;
+        }
+        warm[..n].copy_from_slice(&x);
+        warm[n] = cage_angle;
+        warm[n + 1..block].copy_from_slice(&now);
+        self.table_record(&mut warm[2 * block..], &x, cage_angle, &now);
+        self.x = x;
         Ok(report)
+    }
+
+    /// Length of the azimuth table in the warm start.
+    fn table_len(&self) -> usize {
+        1 + WARM_INPUTS + 4 * TABLE_BINS * self.geometry.z + 4 * TABLE_BINS
+    }
+
+    /// Whether the table predictor applies: identical rollers (then a roller's solution is a
+    /// function of its azimuth alone) and a solve that is not axisymmetric.
+    fn table_applies(&self) -> bool {
+        let dd = &self.params.roller_dd;
+        !self.axisymmetric && dd.iter().all(|d| *d == dd[0])
+    }
+
+    /// Record the solution `x` (roller 1 at `cage_angle`) in the azimuth table: with constant
+    /// inputs the equilibrium is periodic, each roller's unknowns a function of its azimuth
+    /// and the cone's of the cage phase (the cage angle modulo the pitch). The table keeps, in
+    /// TABLE_BINS bins per pitch, the latest solution seen there with its exact azimuth; it is
+    /// emptied when the inputs change. Layout: 1 (version), the inputs, per roller bin (psi,
+    /// a, rho, theta L_s), per cone bin (phase, x, y, z).
+    fn table_record(&self, table: &mut [f64], x: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) {
+        if !self.table_applies() {
+            return;
+        }
+        let z = self.geometry.z;
+        let pitch = TAU / z as f64;
+        let (head, rest) = table.split_at_mut(1 + WARM_INPUTS);
+        if head[0] != 1.0 || head[1..] != now[..] {
+            head[0] = 1.0;
+            head[1..].copy_from_slice(now);
+            rest.fill(f64::NAN);
+        }
+        let nb = TABLE_BINS * z;
+        let (rollers, cone) = rest.split_at_mut(4 * nb);
+        for j in 0..z {
+            let psi = wrap_to(cage_angle + pitch * j as f64, TAU);
+            let b = ((psi / TAU * nb as f64) as usize).min(nb - 1);
+            rollers[4 * b..4 * b + 4].copy_from_slice(&[psi, x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j]]);
+        }
+        let phase = wrap_to(cage_angle, pitch);
+        let b = ((phase / pitch * TABLE_BINS as f64) as usize).min(TABLE_BINS - 1);
+        cone[4 * b..4 * b + 4].copy_from_slice(&[phase, x[0], x[1], x[2]]);
+    }
+
+    /// Table predictor: with the inputs of the table unchanged, every roller's unknowns and the
+    /// cone's are interpolated (cubic, on the four nearest recorded azimuths, two on each
+    /// side within two pitches) from the solutions recorded at nearby azimuths in earlier
+    /// steps. Far finer than the spatial predictor's one sample per pitch once the table has
+    /// filled (rollers that advance a non-integral number of pitches per step sample new
+    /// azimuths every step). False (x untouched) where any node is missing.
+    fn table_predict(&mut self, table: &[f64], x: &mut [f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if !self.table_applies() || table.len() != self.table_len() || table[0] != 1.0 || table[1..1 + WARM_INPUTS] != now[..] {
+            return false;
+        }
+        let z = self.geometry.z;
+        let pitch = TAU / z as f64;
+        let nb = TABLE_BINS * z;
+        let (rollers, cone) = table[1 + WARM_INPUTS..].split_at(4 * nb);
+        let mut pred = [0.0; 3];
+        if !table_interpolate(cone, TABLE_BINS, pitch, wrap_to(cage_angle, pitch), &mut pred) {
+            return false;
+        }
+        // all or nothing: into the scratch first
+        let mut trial = std::mem::take(&mut self.trial);
+        trial[..3].copy_from_slice(&pred);
+        let mut ok = true;
+        for j in 0..z {
+            let psi = wrap_to(cage_angle + pitch * j as f64, TAU);
+            if !table_interpolate(rollers, nb, TAU, psi, &mut pred) {
+                ok = false;
+                break;
+            }
+            trial[3 + 3 * j..6 + 3 * j].copy_from_slice(&pred);
+        }
+        if ok {
+            x[..3 + 3 * z].copy_from_slice(&trial[..3 + 3 * z]);
+        }
+        self.trial = trial;
+        ok
+    }
+
+    /// Temporal predictor: when the cage moved little since the last solve and the one before
+    /// (at most a tenth of the roller pitch each time) and the inputs changed along the same
+    /// line (constant, or a ramp: a smooth time table), every unknown continues along its
+    /// own path: x + r (x - x_prev), r the ratio of this cage advance to the last one. `blocks`:
+    /// the last two solves' blocks (see `solve_in_plane`); `x` holds the last solution and
+    /// receives the prediction. Far more accurate than the spatial predictor where the rollers
+    /// move little per step (slow shafts, small steps) and with rollers of different diameters.
+    fn extrapolate(&self, x: &mut [f64], blocks: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if self.axisymmetric {
+            return false;
+        }
+        let n = x.len();
+        let block = n + 1 + WARM_INPUTS;
+        let pitch = TAU / self.geometry.z as f64;
+        let wrap = |a: f64| a - TAU * round_int(a / TAU);
+        let d = wrap(cage_angle - blocks[n]);
+        let d1 = wrap(blocks[n] - blocks[block + n]);
+        if !(d1.abs() > 0.0 && d1.abs() <= 0.1 * pitch && d.abs() <= 0.1 * pitch) {
+            return false;
+        }
+        let ratio = d / d1;
+        let (u, u1) = (&blocks[n + 1..block], &blocks[block + n + 1..2 * block]);
+        for i in 0..WARM_INPUTS {
+            let step = now[i] - u[i];
+            let last = u[i] - u1[i];
+            if !((step - ratio * last).abs() <= 0.1 * step.abs() + 1e-12 * now[i].abs().max(1.0)) {
+                return false;
+            }
+        }
+        let prev = &blocks[block..block + n];
+        for i in 0..n {
+            x[i] += ratio * (x[i] - prev[i]);
+        }
+        true
     }
 
     /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
@@ -909,6 +1296,11 @@ impl QuasiStatic {
         let mut extrapolated = self.evals.iter().any(|e| e.extrapolated);
         let limit = self.runaway_limit();
         loop {
+            if max_r > tol * f_ref && self.relax_light_rollers(x, fc, m_fc, m_req, 0.1 * tol * f_ref, 1e-3 * f_ref) {
+                ring = self.ring_residual(x, inputs);
+                (max_r, merit, f_ref) = self.norms(&ring, inputs, fc);
+                extrapolated = self.evals.iter().any(|e| e.extrapolated);
+            }
             if max_r <= tol * f_ref {
                 return Ok(SolveReport {
                     iterations,
@@ -1077,20 +1469,28 @@ impl QuasiStatic {
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
+        // The slice loads of the last evaluation, which was at the solution `x`; for the start
+        // of the dynamic model recomputed as before the loads were kept (the interference
+        // summed in another order: its outputs bit for bit as before).
         let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
-        let mut loads = std::mem::take(&mut self.slice_load_buffer);
-        if self.friction.needs_slice_loads(self.params.lubrication) {
+        if !self.cone_table.vector {
             let ns = self.geometry.slices;
-            loads.resize(2 * ns * z, 0.0);
+            let mut loads = std::mem::take(&mut self.slice_load_buffer);
             for j in 0..evaluated {
                 let (cone, cup) = loads[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
                 self.slice_loads(x, j, cone, cup);
             }
+            self.slice_load_buffer = loads;
         }
-        let torque = self
-            .friction
-            .evaluate(&self.geometry, &self.evals, evaluated, inputs, self.params.lubrication, &loads, out);
-        self.slice_load_buffer = loads;
+        let torque = self.friction.evaluate(
+            &self.geometry,
+            &self.evals,
+            evaluated,
+            inputs,
+            self.params.lubrication,
+            &self.slice_load_buffer,
+            out,
+        );
         out.friction_torque_raceway = torque.raceway;
         out.friction_torque_flange = torque.flange;
         out.friction_torque_cage = 0.0;

@@ -98,6 +98,29 @@ impl Lubricant {
         share * boundary + (1.0 - share) * film
     }
 
+    /// [`Lubricant::raceway_mu_film`] with the film equation of the thermal Eyring law solved
+    /// by Halley's method ([`traction::thermal_eyring_stress_ln_halley`]; the same coefficient
+    /// to rounding, fewer evaluations; the quasi-static model's).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn raceway_mu_film_halley(&self, w: f64, p_mean: f64, h: f64, ln_h: f64, u_e: f64, v_s: f64, ln_vs: f64, boundary_slide_roll: f64) -> f64 {
+        let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
+        let film = if share < 1.0 && v_s > 0.0 {
+            let contact = FilmContact {
+                pressure: p_mean,
+                ln_eta: self.viscosity.ln_eta(p_mean),
+                film: h,
+                half_width: 0.5 * w / p_mean,
+                entrainment: u_e,
+            };
+            traction::thermal_eyring_stress_ln_halley(&self.rheology, &contact, v_s, ln_vs, ln_h) / p_mean
+        } else {
+            0.0
+        };
+        let boundary = if share > 0.0 { boundary_mu(boundary_slide_roll) } else { 0.0 };
+        share * boundary + (1.0 - share) * film
+    }
+
     /// Friction force |F| (N) of the rib contact (`traction` = 0) at normal load `q`, sliding
     /// speed `v_s`, entrainment speed `u_e`, isothermal central film `h_iso` and Hertz ellipse
     /// (`a` along the entrainment, `b`, peak pressure `p_h`): asperity and film shares from the
@@ -105,6 +128,19 @@ impl Lubricant {
     /// [`Lubricant::raceway_mu`].
     #[allow(clippy::too_many_arguments)]
     pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, false)
+    }
+
+    /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
+    /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
+    #[allow(clippy::too_many_arguments)]
+    pub fn rib_force_halley(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, true)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn rib_force_with(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64, halley: bool) -> f64 {
         if !(q > 0.0) {
             return 0.0;
         }
@@ -121,7 +157,12 @@ impl Lubricant {
             0.0
         };
         let film = if share < 1.0 && v_s > 0.0 {
-            (1.0 - share) * rib_film_traction(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
+            (1.0 - share)
+                * if halley {
+                    rib::rib_film_traction_halley(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
+                } else {
+                    rib_film_traction(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
+                }
         } else {
             0.0
         };

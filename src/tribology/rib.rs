@@ -16,6 +16,7 @@
 
 use super::traction::{self, FilmContact, Rheology};
 use super::viscosity::{roelands_viscosity_with, ViscosityTable};
+use crate::fastmath as fm;
 use std::f64::consts::PI;
 
 /// Gauss-Legendre nodes and weights on [0, 1] (8 points) for the radial integral over the
@@ -76,22 +77,61 @@ pub fn flange_viscous_traction_with(eta0: f64, ln_eta0_967: f64, v_s: f64, h: f6
 /// film `h`, sliding speed `v_s`, entrainment speed `u_e`.
 #[allow(clippy::too_many_arguments)]
 pub fn rib_film_traction(rheology: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
+    rib_film_traction_with(rheology, viscosity, v_s, h, u_e, a, b, p_h, traction::thermal_eyring_stress_ln)
+}
+
+/// [`rib_film_traction`] with the film equation solved by Halley's method
+/// ([`traction::thermal_eyring_stress_ln_halley`]: the same force to rounding; the
+/// quasi-static model's).
+#[allow(clippy::too_many_arguments)]
+pub fn rib_film_traction_halley(rheology: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
+    rib_film_traction_with(rheology, viscosity, v_s, h, u_e, a, b, p_h, traction::thermal_eyring_stress_ln_halley)
+}
+
+/// The Gauss sum of [`rib_film_traction`] with the stress law `stress(rheology, contact, |v_s|,
+/// ln |v_s|, ln h)`; ln |v_s|, ln h and the rings' sqrt(1 - rho^2) once for all rings (the
+/// values `traction::thermal_eyring_stress` computed at each ring).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rib_film_traction_with<S: Fn(&Rheology, &FilmContact, f64, f64, f64) -> f64>(
+    rheology: &Rheology,
+    viscosity: &ViscosityTable,
+    v_s: f64,
+    h: f64,
+    u_e: f64,
+    a: f64,
+    b: f64,
+    p_h: f64,
+    stress: S,
+) -> f64 {
     if a <= 0.0 || b <= 0.0 || v_s == 0.0 {
         return 0.0;
     }
+    let v = v_s.abs();
+    let (ln_v, ln_h) = if v > 0.0 {
+        (fm::ln(v), fm::ln(h.max(1e-9)))
+    } else {
+        (0.0, 0.0)
+    };
     let mut sum = 0.0;
     for k in 0..8 {
         let rho = X[k];
-        let p = p_h * (1.0 - rho * rho).max(0.0).sqrt();
+        let root = (1.0 - rho * rho).max(0.0).sqrt();
+        let p = p_h * root;
         let contact = FilmContact {
             pressure: p,
             ln_eta: viscosity.ln_eta(p),
             film: h,
             // the chord along the entrainment through this ring of the ellipse
-            half_width: a * (1.0 - rho * rho).max(0.0).sqrt(),
+            half_width: a * root,
             entrainment: u_e,
         };
-        sum += W[k] * traction::thermal_eyring_stress(rheology, &contact, v_s) * rho;
+        let tau = if v > 0.0 && p > 0.0 {
+            stress(rheology, &contact, v, ln_v, ln_h)
+        } else {
+            0.0
+        };
+        sum += W[k] * tau * rho;
     }
     2.0 * PI * a * b * sum
 }

@@ -1,0 +1,292 @@
+//! The Newton evaluation's slice loop two slices at a time (SSE2, part of every x86-64 CPU).
+//!
+//! Per slice the loop forms the interference, applies the contact law (Johnson: one ln;
+//! Palmgren: one ln and one exp) and accumulates six sums. The scalar loop
+//! (`QuasiStatic::line_sums_with`) spends most of its instructions in the table-based `ln` of
+//! `fastmath`, which does not vectorise (table look-ups). Here ln and exp are fdlibm's
+//! polynomial forms (Sun's e_log.c / e_exp.c, error below 1 ulp, no tables), evaluated in both
+//! lanes at once; unloaded slices are masked instead of branched over.
+//!
+//! What differs from the scalar loop: the logarithm and exponential round differently (both
+//! are within 1 ulp of the exact value), and the six sums are accumulated separately over
+//! even and odd slices and then added, so the sums differ from the scalar loop's in the last
+//! bits. Where the scalar loop does something special (a NaN interference, the Johnson law
+//! beyond its validity, an interference outside the normal range of f64) the kernel returns
+//! `None` and the scalar loop does the line.
+
+use super::{LineSums, SliceTable};
+
+#[cfg(target_arch = "x86_64")]
+use std::arch::x86_64::*;
+
+/// The contact law of a line as the kernel takes it.
+#[derive(Clone, Copy)]
+pub(super) enum Law<'a> {
+    /// q = c delta / (ln(8R) - ln delta - 1), per slice ln(8R) (padded like the table).
+    Johnson { c: f64, ln_8r: &'a [f64] },
+    /// q = k delta^(10/9).
+    Palmgren { k: f64 },
+}
+
+// fdlibm e_log.c
+const LG1: f64 = 6.666_666_666_666_735_13e-01;
+const LG2: f64 = 3.999_999_999_940_941_908e-01;
+const LG3: f64 = 2.857_142_874_366_239_149e-01;
+const LG4: f64 = 2.222_219_843_214_978_396e-01;
+const LG5: f64 = 1.818_357_216_161_805_012e-01;
+const LG6: f64 = 1.531_383_769_920_937_332e-01;
+const LG7: f64 = 1.479_819_860_511_658_591e-01;
+const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-01;
+const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+// fdlibm e_exp.c
+const P1: f64 = 1.666_666_666_666_660_190_37e-01;
+const P2: f64 = -2.777_777_777_701_559_338_42e-03;
+const P3: f64 = 6.613_756_321_437_934_361_17e-05;
+const P4: f64 = -1.653_390_220_546_525_153_90e-06;
+const P5: f64 = 4.138_136_797_057_238_460_39e-08;
+/// 1.5 * 2^52: adding and subtracting it rounds to the nearest integer.
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
+/// ln x in both lanes, x positive, normal and finite (fdlibm's algorithm, < 1 ulp).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn ln_pd(x: __m128d) -> __m128d {
+    let bits = _mm_castpd_si128(x);
+    // exponent as a double: (2^52 + biased exponent) - (2^52 + 1023)
+    let e_bits = _mm_or_si128(_mm_srli_epi64::<52>(bits), _mm_castpd_si128(_mm_set1_pd(4_503_599_627_370_496.0)));
+    let mut k = _mm_sub_pd(_mm_castsi128_pd(e_bits), _mm_set1_pd(4_503_599_627_370_496.0 + 1023.0));
+    // mantissa in [1, 2)
+    let m_bits = _mm_or_si128(
+        _mm_and_si128(bits, _mm_set1_epi64x(0x000f_ffff_ffff_ffff)),
+        _mm_set1_epi64x(0x3ff0_0000_0000_0000),
+    );
+    let mut m = _mm_castsi128_pd(m_bits);
+    // into [sqrt(2)/2, sqrt(2)): halve (exactly) above sqrt(2)
+    let big = _mm_cmpgt_pd(m, _mm_set1_pd(std::f64::consts::SQRT_2));
+    m = _mm_or_pd(_mm_and_pd(big, _mm_mul_pd(m, _mm_set1_pd(0.5))), _mm_andnot_pd(big, m));
+    k = _mm_add_pd(k, _mm_and_pd(big, _mm_set1_pd(1.0)));
+    let f = _mm_sub_pd(m, _mm_set1_pd(1.0));
+    let s = _mm_div_pd(f, _mm_add_pd(_mm_set1_pd(2.0), f));
+    let z = _mm_mul_pd(s, s);
+    let w = _mm_mul_pd(z, z);
+    let set = |v: f64| _mm_set1_pd(v);
+    let t1 = _mm_mul_pd(w, _mm_add_pd(set(LG2), _mm_mul_pd(w, _mm_add_pd(set(LG4), _mm_mul_pd(w, set(LG6))))));
+    let t2 = _mm_mul_pd(
+        z,
+        _mm_add_pd(set(LG1), _mm_mul_pd(w, _mm_add_pd(set(LG3), _mm_mul_pd(w, _mm_add_pd(set(LG5), _mm_mul_pd(w, set(LG7))))))),
+    );
+    let r = _mm_add_pd(t2, t1);
+    let hfsq = _mm_mul_pd(_mm_mul_pd(set(0.5), f), f);
+    // k ln2_hi - ((hfsq - (s (hfsq + R) + k ln2_lo)) - f)
+    let inner = _mm_add_pd(_mm_mul_pd(s, _mm_add_pd(hfsq, r)), _mm_mul_pd(k, set(LN2_LO)));
+    _mm_sub_pd(_mm_mul_pd(k, set(LN2_HI)), _mm_sub_pd(_mm_sub_pd(hfsq, inner), f))
+}
+
+/// exp y in both lanes for |y| < 700 (fdlibm's algorithm, < 1 ulp).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn exp_pd(y: __m128d) -> __m128d {
+    let set = |v: f64| _mm_set1_pd(v);
+    let t = _mm_add_pd(_mm_mul_pd(y, set(std::f64::consts::LOG2_E)), set(ROUNDER));
+    let k = _mm_sub_pd(t, set(ROUNDER));
+    let hi = _mm_sub_pd(y, _mm_mul_pd(k, set(LN2_HI)));
+    let lo = _mm_mul_pd(k, set(LN2_LO));
+    let r = _mm_sub_pd(hi, lo);
+    let r2 = _mm_mul_pd(r, r);
+    let poly = _mm_add_pd(
+        set(P1),
+        _mm_mul_pd(r2, _mm_add_pd(set(P2), _mm_mul_pd(r2, _mm_add_pd(set(P3), _mm_mul_pd(r2, _mm_add_pd(set(P4), _mm_mul_pd(r2, set(P5)))))))),
+    );
+    let c = _mm_sub_pd(r, _mm_mul_pd(r2, poly));
+    // 1 - ((lo - r c / (2 - c)) - hi)
+    let q = _mm_div_pd(_mm_mul_pd(r, c), _mm_sub_pd(set(2.0), c));
+    let e = _mm_sub_pd(set(1.0), _mm_sub_pd(_mm_sub_pd(lo, q), hi));
+    // times 2^k: k is in the low bits of t (t = 1.5 2^52 + k)
+    let ki = _mm_sub_epi64(_mm_castpd_si128(t), _mm_castpd_si128(set(ROUNDER)));
+    _mm_castsi128_pd(_mm_add_epi64(_mm_castpd_si128(e), _mm_slli_epi64::<52>(ki)))
+}
+
+/// ln of every value of `x` with the kernel's logarithm (tests).
+#[cfg(all(test, target_arch = "x86_64"))]
+pub(super) fn ln2(x: [f64; 2]) -> [f64; 2] {
+    let mut out = [0.0; 2];
+    unsafe { _mm_storeu_pd(out.as_mut_ptr(), ln_pd(_mm_loadu_pd(x.as_ptr()))) };
+    out
+}
+
+/// exp of every value of `y` with the kernel's exponential (tests).
+#[cfg(all(test, target_arch = "x86_64"))]
+pub(super) fn exp2(y: [f64; 2]) -> [f64; 2] {
+    let mut out = [0.0; 2];
+    unsafe { _mm_storeu_pd(out.as_mut_ptr(), exp_pd(_mm_loadu_pd(y.as_ptr()))) };
+    out
+}
+
+/// The sums of one contact line (see `QuasiStatic::line_sums`), two slices at a time; slice
+/// loads to `loads` (length n). `None`: the scalar loop must do this line.
+#[cfg(target_arch = "x86_64")]
+pub(super) fn line_sums(t: &SliceTable, n: usize, law: Law, base: f64, theta: f64, gamma: f64, loads: &mut [f64]) -> Option<LineSums> {
+    let padded = (n + 1) & !1;
+    if t.lever.len() < padded || t.lever_s.len() < padded || t.chi.len() < padded || t.crown.len() < padded || loads.len() != n {
+        return None;
+    }
+    // SAFETY: SSE2 is part of x86-64; every load reads within the padded tables (checked
+    // above), a store of two values only where k + 2 <= n.
+    unsafe {
+        match law {
+            Law::Johnson { c, ln_8r } => {
+                if ln_8r.len() < padded {
+                    return None;
+                }
+                let vc = _mm_set1_pd(c);
+                let one = _mm_set1_pd(1.0);
+                let ln_8r = ln_8r.as_ptr();
+                kernel(t, n, base, theta, gamma, loads, t.johnson_limit, |k, d, lnd| {
+                    let lg = _mm_sub_pd(_mm_loadu_pd(ln_8r.add(k)), lnd);
+                    let inv = _mm_div_pd(one, _mm_sub_pd(lg, one));
+                    (
+                        _mm_mul_pd(_mm_mul_pd(vc, d), inv),
+                        _mm_mul_pd(_mm_mul_pd(_mm_mul_pd(vc, lg), inv), inv),
+                    )
+                })
+            }
+            Law::Palmgren { k: kp } => {
+                let (vk, vk10) = (_mm_set1_pd(kp), _mm_set1_pd(kp * (10.0 / 9.0)));
+                kernel(t, n, base, theta, gamma, loads, 1e300, |_, d, lnd| {
+                    let d19 = exp_pd(_mm_mul_pd(lnd, _mm_set1_pd(1.0 / 9.0)));
+                    (_mm_mul_pd(_mm_mul_pd(vk, d), d19), _mm_mul_pd(vk10, d19))
+                })
+            }
+        }
+    }
+}
+
+/// The loop of [`line_sums`] for one law: `law(k, delta, ln delta)` gives (q, dq/d delta) of
+/// slices k, k + 1. `limit`: the largest interference the kernel may take (beyond it, the
+/// scalar loop).
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+unsafe fn kernel<F: Fn(usize, __m128d, __m128d) -> (__m128d, __m128d)>(
+    t: &SliceTable,
+    n: usize,
+    base: f64,
+    theta: f64,
+    gamma: f64,
+    loads: &mut [f64],
+    limit: f64,
+    law: F,
+) -> Option<LineSums> {
+    /// Number of set bits of a two-lane mask.
+    const COUNT: [u32; 4] = [0, 1, 1, 2];
+    let padded = (n + 1) & !1;
+    let set = |v: f64| _mm_set1_pd(v);
+    let (vbase, vtheta, vgamma) = (set(base), set(theta), set(gamma));
+    let zero = _mm_setzero_pd();
+    let mut max_d = set(f64::NEG_INFINITY);
+    let (mut sq, mut sql, mut sqc, mut sk, mut skl, mut skl2) = (zero, zero, zero, zero, zero, zero);
+    let mut loaded = 0u32;
+    let mut k = 0;
+    while k < padded {
+        let lever = _mm_loadu_pd(t.lever.as_ptr().add(k));
+        let chi = _mm_loadu_pd(t.chi.as_ptr().add(k));
+        let crown = _mm_loadu_pd(t.crown.as_ptr().add(k));
+        // base - theta lever + gamma chi - crown, in the scalar loop's order
+        let delta = _mm_sub_pd(_mm_add_pd(_mm_sub_pd(vbase, _mm_mul_pd(vtheta, lever)), _mm_mul_pd(vgamma, chi)), crown);
+        max_d = _mm_max_pd(max_d, delta);
+        // touching: delta > 0, or NaN (not <= 0: the NaN then reaches the sums, and the
+        // scalar loop takes the line, as it does any NaN)
+        let on = _mm_cmpnle_pd(delta, zero);
+        let bits = _mm_movemask_pd(on);
+        let q = if bits != 0 {
+            let lever_s = _mm_loadu_pd(t.lever_s.as_ptr().add(k));
+            let d = _mm_or_pd(_mm_and_pd(on, delta), _mm_andnot_pd(on, set(1.0)));
+            // (a positive interference below the normal range, 2e-308 m, would take a wrong
+            // logarithm here and give a load of the same nothing, ~1e-300 N)
+            let (q, dq) = law(k, d, ln_pd(d));
+            let q = _mm_and_pd(on, q);
+            let dq = _mm_and_pd(on, dq);
+            sq = _mm_add_pd(sq, q);
+            sql = _mm_add_pd(sql, _mm_mul_pd(q, lever));
+            sqc = _mm_add_pd(sqc, _mm_mul_pd(q, chi));
+            sk = _mm_add_pd(sk, dq);
+            let dql = _mm_mul_pd(dq, lever_s);
+            skl = _mm_add_pd(skl, dql);
+            skl2 = _mm_add_pd(skl2, _mm_mul_pd(dql, lever_s));
+            loaded += COUNT[(bits & 3) as usize];
+            q
+        } else {
+            zero
+        };
+        if k + 2 <= n {
+            _mm_storeu_pd(loads.as_mut_ptr().add(k), q);
+        } else {
+            _mm_store_sd(loads.as_mut_ptr().add(k), q);
+        }
+        k += 2;
+    }
+    let h = |v: __m128d| {
+        let mut pair = [0.0; 2];
+        _mm_storeu_pd(pair.as_mut_ptr(), v);
+        (pair[0], pair[1])
+    };
+    let sum = |v: __m128d| {
+        let (a, b) = h(v);
+        a + b
+    };
+    let (m0, m1) = h(max_d);
+    let max_delta = m0.max(m1);
+    let (q, kk) = (sum(sq), sum(sk));
+    // NaN (in the sums), or beyond the law's range (Johnson: some slice may be past the
+    // validity limit, conservatively by the largest interference): the scalar loop
+    if !(q.is_finite() && kk.is_finite() && max_delta < limit) {
+        return None;
+    }
+    Some(LineSums {
+        q,
+        q_lever: sum(sql),
+        q_chi: sum(sqc),
+        k: kk,
+        k_lever: sum(skl),
+        k_lever2: sum(skl2),
+        loaded,
+        max_delta,
+        extrapolated: false,
+    })
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+
+    fn ulps(a: f64, b: f64) -> f64 {
+        ((a - b) / (b.abs() * f64::EPSILON)).abs()
+    }
+
+    #[test]
+    fn vector_ln_and_exp_are_within_an_ulp_or_two() {
+        let mut worst: f64 = 0.0;
+        let mut x = 1e-300_f64;
+        while x < 1e300 {
+            for f in [1.0, 1.000_000_1, 1.37, 1.414_213_5, 1.414_213_6, 1.5, 1.999_999] {
+                let v = x * f;
+                let [a, b] = ln2([v, v * 1.1]);
+                for (got, arg) in [(a, v), (b, v * 1.1)] {
+                    let want = arg.ln();
+                    let err = if want.abs() > 1e-3 { ulps(got, want) } else { (got - want).abs() / f64::EPSILON };
+                    worst = worst.max(err);
+                }
+            }
+            x *= 1.7;
+        }
+        assert!(worst < 2.0, "ln worst {worst} ulp");
+        let mut worst: f64 = 0.0;
+        let mut y = -699.0;
+        while y < 699.0 {
+            let [a, b] = exp2([y, -y * 0.37]);
+            worst = worst.max(ulps(a, y.exp())).max(ulps(b, (-y * 0.37).exp()));
+            y += 0.0137;
+        }
+        assert!(worst < 2.0, "exp worst {worst} ulp");
+    }
+}
