@@ -486,7 +486,7 @@ impl Outputs {
             nis,
             nos,
             nfs,
-            sliding_friction
+            sliding_friction,
         } = o;
         self.friction_torque.clone_from(friction_torque);
         self.friction_torque_raceway.clone_from(friction_torque_raceway);

@@ -96,7 +96,10 @@ fn qs_measured_steps(s: &mut Simulation, n: usize) -> i32 {
 #[ignore]
 fn kernel() {
     let name = std::env::var("QS_CASE").expect("QS_CASE");
-    let n: usize = std::env::var("QS_STEPS").ok().and_then(|s| s.parse().ok()).unwrap_or(MEASURED_STEPS);
+    let n: usize = std::env::var("QS_STEPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(MEASURED_STEPS);
     let mut s = case_sim(&name);
     if std::env::var_os("QS_SEQ").is_some() {
         let mut seq = Vec::new();
@@ -221,7 +224,9 @@ fn dump() {
             let fb: Vec<&str> = b.split(' ').collect();
             assert_eq!(fa[..4], fb[..4], "dump layouts differ");
             let (va, vb): (f64, f64) = (fa[4].parse().unwrap(), fb[4].parse().unwrap());
-            let e = worst.entry((fa[0].to_string(), fa[2].to_string())).or_insert((0.0, 0.0, String::new()));
+            let e = worst
+                .entry((fa[0].to_string(), fa[2].to_string()))
+                .or_insert((0.0, 0.0, String::new()));
             e.0 = e.0.max(vb.abs());
             if (va - vb).abs() > e.1 {
                 e.1 = (va - vb).abs();
@@ -236,7 +241,10 @@ fn dump() {
                 .iter()
                 .find_map(|p| {
                     let z = Bearing::preset(p).unwrap().roller_count;
-                    var::expanded(z).into_iter().find(|(_, _, row)| row.name == name).map(|(_, _, row)| row.unit.unwrap_or("1").to_string())
+                    var::expanded(z)
+                        .into_iter()
+                        .find(|(_, _, row)| row.name == name)
+                        .map(|(_, _, row)| row.unit.unwrap_or("1").to_string())
                 })
                 .unwrap_or_default()
         };

@@ -21,9 +21,9 @@
 use super::{LineSums, RollerEval};
 use crate::bearing::Bearing;
 use crate::contact::line_contact_half_width;
+use crate::fastmath as fm;
 use crate::geometry::{ContactLine, Geometry};
 use crate::model::{Inputs, Lubrication, Outputs, Parameters};
-use crate::fastmath as fm;
 use crate::tribology as tr;
 
 /// Per-slice weights the solver multiplies with the slice loads.

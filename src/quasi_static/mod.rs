@@ -206,7 +206,12 @@ impl SliceTable {
                 LineLaw::Palmgren { .. } => Vec::new(),
             },
             johnson_limit: match &line.law {
-                LineLaw::Johnson { ln_8r, .. } => 0.999 * ln_8r[..n].iter().fold(f64::INFINITY, |m, l| m.min((l - (contact::JOHNSON_LOG_FLOOR + 1.0)).exp())),
+                LineLaw::Johnson { ln_8r, .. } => {
+                    0.999
+                        * ln_8r[..n]
+                            .iter()
+                            .fold(f64::INFINITY, |m, l| m.min(libm::exp(l - (contact::JOHNSON_LOG_FLOOR + 1.0))))
+                }
                 LineLaw::Palmgren { .. } => f64::INFINITY,
             },
             lever: pad(line.lever.clone(), 0.0),

@@ -103,7 +103,17 @@ impl Lubricant {
     /// to rounding, fewer evaluations; the quasi-static model's).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub fn raceway_mu_film_halley(&self, w: f64, p_mean: f64, h: f64, ln_h: f64, u_e: f64, v_s: f64, ln_vs: f64, boundary_slide_roll: f64) -> f64 {
+    pub fn raceway_mu_film_halley(
+        &self,
+        w: f64,
+        p_mean: f64,
+        h: f64,
+        ln_h: f64,
+        u_e: f64,
+        v_s: f64,
+        ln_vs: f64,
+        boundary_slide_roll: f64,
+    ) -> f64 {
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
         let film = if share < 1.0 && v_s > 0.0 {
             let contact = FilmContact {
@@ -140,7 +150,18 @@ impl Lubricant {
 
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn rib_force_with(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64, halley: bool) -> f64 {
+    fn rib_force_with(
+        &self,
+        q: f64,
+        v_s: f64,
+        u_e: f64,
+        boundary_slide_roll: f64,
+        h_iso: f64,
+        a: f64,
+        b: f64,
+        p_h: f64,
+        halley: bool,
+    ) -> f64 {
         if !(q > 0.0) {
             return 0.0;
         }

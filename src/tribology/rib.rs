@@ -84,8 +84,27 @@ pub fn rib_film_traction(rheology: &Rheology, viscosity: &ViscosityTable, v_s: f
 /// ([`traction::thermal_eyring_stress_ln_halley`]: the same force to rounding; the
 /// quasi-static model's).
 #[allow(clippy::too_many_arguments)]
-pub fn rib_film_traction_halley(rheology: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
-    rib_film_traction_with(rheology, viscosity, v_s, h, u_e, a, b, p_h, traction::thermal_eyring_stress_ln_halley)
+pub fn rib_film_traction_halley(
+    rheology: &Rheology,
+    viscosity: &ViscosityTable,
+    v_s: f64,
+    h: f64,
+    u_e: f64,
+    a: f64,
+    b: f64,
+    p_h: f64,
+) -> f64 {
+    rib_film_traction_with(
+        rheology,
+        viscosity,
+        v_s,
+        h,
+        u_e,
+        a,
+        b,
+        p_h,
+        traction::thermal_eyring_stress_ln_halley,
+    )
 }
 
 /// The Gauss sum of [`rib_film_traction`] with the stress law `stress(rheology, contact, |v_s|,
@@ -108,11 +127,7 @@ fn rib_film_traction_with<S: Fn(&Rheology, &FilmContact, f64, f64, f64) -> f64>(
         return 0.0;
     }
     let v = v_s.abs();
-    let (ln_v, ln_h) = if v > 0.0 {
-        (fm::ln(v), fm::ln(h.max(1e-9)))
-    } else {
-        (0.0, 0.0)
-    };
+    let (ln_v, ln_h) = if v > 0.0 { (fm::ln(v), fm::ln(h.max(1e-9))) } else { (0.0, 0.0) };
     let mut sum = 0.0;
     for k in 0..8 {
         let rho = X[k];

@@ -437,7 +437,10 @@ mod tests {
             for heating in [0.0, 1e-6, 0.02, 0.05, 0.3, 0.7, 6.0, 80.0] {
                 let newton = solve_thermal_eyring(ln_x, heating);
                 let y = solve_thermal_eyring_halley(ln_x, heating);
-                assert!((y - newton).abs() <= 4e-16 * newton.max(1e-300), "ln X {ln_x}, B {heating}: {y} vs {newton}");
+                assert!(
+                    (y - newton).abs() <= 4e-16 * newton.max(1e-300),
+                    "ln X {ln_x}, B {heating}: {y} vs {newton}"
+                );
             }
         }
     }
