@@ -288,3 +288,40 @@ fn dump() {
         println!("overall max relative change {overall:.3e}");
     }
 }
+
+/// Newton iterations per step in a smooth time table: every preset's combined case with the
+/// radial load varying as Fy (1 + 0.2 sin(2 pi t / 0.1 s)) and, for the deflected case, xi
+/// as 0.004 deg (1 + 0.2 sin(...)), 1 ms steps, 300 steps after 10.
+#[test]
+#[ignore]
+fn smooth() {
+    println!("{:<26} {:>10} {:>9} {:>11}", "case", "iter/step", "max iter", "median us");
+    for (p, c, fy, xi, l) in cases() {
+        if c == "dry" || std::env::var("QS_ONLY").map_or(false, |o| !format!("{p}/{c}").contains(&o)) {
+            continue;
+        }
+        let mut s = build(p, fy, xi, l);
+        let fy0 = s.inputs().fy;
+        let xi0 = s.inputs().xi;
+        let mut its = Vec::new();
+        let mut times = Vec::new();
+        for k in 0..300 {
+            let t = (warm_steps() + k) as f64 * H;
+            let f = 1.0 + 0.2 * (std::f64::consts::TAU * t / 0.1).sin();
+            s.set_real(var::FY, fy0 * f).unwrap();
+            s.set_real(var::XI, xi0 * f).unwrap();
+            let t0 = Instant::now();
+            s.do_step(t, H).unwrap();
+            times.push(t0.elapsed().as_secs_f64());
+            its.push(s.last_outputs().solver_iterations);
+        }
+        times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        println!(
+            "{:<26} {:>10.2} {:>9} {:>11.2}",
+            format!("{p}/{c}"),
+            its.iter().sum::<i32>() as f64 / its.len() as f64,
+            its.iter().max().unwrap(),
+            times[times.len() / 2] * 1e6
+        );
+    }
+}

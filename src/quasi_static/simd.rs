@@ -276,6 +276,89 @@ unsafe fn kernel<F: Fn(usize, __m128d, __m128d) -> (__m128d, __m128d)>(
     })
 }
 
+/// Per-slice-position constants of one raceway line for [`film_prepass`] (the speed-dependent
+/// parts of the film, inlet heating and rolling resistance laws; see `friction.rs`), padded
+/// to an even length. Unheated slices carry l042 = 0, heat_den = 1 (factor exactly 1), slices
+/// without rolling resistance roll_a = 0, e_r_l = 1 (exactly 0).
+#[derive(Debug, Clone, Default)]
+pub(super) struct FilmConsts {
+    pub r_bar: Vec<f64>,
+    pub l042: Vec<f64>,
+    pub heat_den: Vec<f64>,
+    pub film_a: Vec<f64>,
+    pub e_r: Vec<f64>,
+    pub roll_a: Vec<f64>,
+    pub e_r_l: Vec<f64>,
+}
+
+/// Load-dependent values of every loaded slice of one raceway line, two slices at a time:
+/// load per length w, mean Hertz pressure, the film reduced by inlet heating and its ln, and
+/// the rolling resistance, each the friction model's formula (`FrictionModel::raceway_sliced`)
+/// with the kernel's ln and exp (< 1 ulp; the scalar code's table-based ones round
+/// differently). Unloaded slices are left as they are. `n` <= the arrays' length.
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn film_prepass(
+    c: &FilmConsts,
+    n: usize,
+    loads: &[f64],
+    slice_len: f64,
+    e_prime: f64,
+    w: &mut [f64],
+    p_mean: &mut [f64],
+    h: &mut [f64],
+    ln_h: &mut [f64],
+    rolling: &mut [f64],
+) {
+    let padded = (n + 1) & !1;
+    let arrays = [&c.r_bar, &c.l042, &c.heat_den, &c.film_a, &c.e_r, &c.roll_a, &c.e_r_l];
+    assert!(loads.len() >= n && arrays.iter().all(|a| a.len() >= padded));
+    assert!(w.len() >= padded && p_mean.len() >= padded && h.len() >= padded && ln_h.len() >= padded && rolling.len() >= padded);
+    // SAFETY: SSE2 is part of x86-64; all reads and writes within the lengths checked above
+    // (the last load of an odd line read from a local pair).
+    unsafe {
+        let set = |v: f64| _mm_set1_pd(v);
+        let pi_e = std::f64::consts::PI * e_prime;
+        let mut k = 0;
+        while k < padded {
+            let pair = [loads[k], if k + 1 < n { loads[k + 1] } else { 0.0 }];
+            let q = _mm_loadu_pd(pair.as_ptr());
+            let on = _mm_cmpgt_pd(q, _mm_setzero_pd());
+            if _mm_movemask_pd(on) != 0 {
+                // unloaded lanes compute at q = 1 (finite, discarded)
+                let q = _mm_or_pd(_mm_and_pd(on, q), _mm_andnot_pd(on, set(1.0)));
+                let ld = |a: &Vec<f64>| _mm_loadu_pd(a.as_ptr().add(k));
+                let vw = _mm_div_pd(q, set(slice_len));
+                // contact::line_contact_half_width: b = sqrt(8 w r / (pi E')), p_mean = w / (2 b)
+                let b = _mm_sqrt_pd(_mm_div_pd(_mm_mul_pd(_mm_mul_pd(set(8.0), vw), ld(&c.r_bar)), set(pi_e)));
+                let pm = _mm_div_pd(vw, _mm_mul_pd(set(2.0), b));
+                // inlet heating: max((1 - 13.2 (p_h / E') L^0.42) / den, MIN_THERMAL_FACTOR)
+                let ph_e = _mm_div_pd(_mm_mul_pd(set(4.0 / std::f64::consts::PI), pm), set(e_prime));
+                let num = _mm_sub_pd(set(1.0), _mm_mul_pd(_mm_mul_pd(set(13.2), ph_e), ld(&c.l042)));
+                let heating = _mm_max_pd(_mm_div_pd(num, ld(&c.heat_den)), set(crate::tribology::film::MIN_THERMAL_FACTOR));
+                // Hamrock film film_a (w / E'r)^-0.166, reduced
+                let h_iso = _mm_mul_pd(ld(&c.film_a), exp_pd(_mm_mul_pd(set(-0.166), ln_pd(_mm_div_pd(vw, ld(&c.e_r))))));
+                let vh = _mm_mul_pd(heating, h_iso);
+                let vln_h = ln_pd(vh);
+                // rolling resistance heating (roll_a (q / E'rl)^0.246 l)
+                let roll = _mm_mul_pd(
+                    heating,
+                    _mm_mul_pd(
+                        _mm_mul_pd(ld(&c.roll_a), exp_pd(_mm_mul_pd(set(0.246), ln_pd(_mm_div_pd(q, ld(&c.e_r_l)))))),
+                        set(slice_len),
+                    ),
+                );
+                _mm_storeu_pd(w.as_mut_ptr().add(k), vw);
+                _mm_storeu_pd(p_mean.as_mut_ptr().add(k), pm);
+                _mm_storeu_pd(h.as_mut_ptr().add(k), vh);
+                _mm_storeu_pd(ln_h.as_mut_ptr().add(k), vln_h);
+                _mm_storeu_pd(rolling.as_mut_ptr().add(k), roll);
+            }
+            k += 2;
+        }
+    }
+}
+
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     use super::*;
