@@ -405,7 +405,18 @@ impl FrictionModel {
             let mut h = [0.0; PREPASS_SLICES];
             let mut ln_h = [0.0; PREPASS_SLICES];
             let mut rolling = [0.0; PREPASS_SLICES];
-            super::simd::film_prepass(film, n, loads, self.slice_len, self.lubricant.e_prime, &mut w, &mut p_mean, &mut h, &mut ln_h, &mut rolling);
+            super::simd::film_prepass(
+                film,
+                n,
+                loads,
+                self.slice_len,
+                self.lubricant.e_prime,
+                &mut w,
+                &mut p_mean,
+                &mut h,
+                &mut ln_h,
+                &mut rolling,
+            );
             let sign = if speed < 0.0 { -1.0 } else { 1.0 };
             let mut f = RacewayFriction::default();
             for (k, &q) in loads.iter().enumerate().take(n) {
