@@ -129,24 +129,7 @@ pub fn thermal_eyring_stress(r: &Rheology, c: &FilmContact, v_s: f64) -> f64 {
 /// the film in logarithms); `v_s` > 0, `c.film` >= 1e-9 m.
 #[inline(always)]
 pub fn thermal_eyring_stress_ln(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: f64, ln_h: f64) -> f64 {
-    let tau0 = r.eyring_stress;
-    let h = c.film.max(1e-9);
-    // X = eta gamma_dot / tau_0
-    let ln_x = c.ln_eta + ln_vs - ln_h.max(LN_MIN_FILM) - r.ln_eyring_stress;
-    // temperature rise per unit stress (surface flash + film mean), times beta_p tau_0
-    let b = c.half_width.max(0.0);
-    let peclet = c.entrainment.abs() * b * (0.5 / STEEL_DIFFUSIVITY);
-    let heat = 0.376 * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt()) + h / (12.0 * r.conductivity);
-    let heating = r.beta_at(c.ln_eta) * tau0 * v_s * heat;
-    let y = solve_thermal_eyring(ln_x, heating);
-    let mut tau = tau0 * y;
-    // elastic entry (Maxwell): mean over the transit time T = 2 b / u_e
-    if r.shear_modulus > 0.0 && c.entrainment.abs() > 0.0 && tau > 0.0 {
-        // T / lambda = 2 b G gamma_dot / (u_e tau)
-        let ratio = 2.0 * b * r.shear_modulus * v_s / (c.entrainment.abs() * tau * h);
-        tau *= maxwell_mean(ratio);
-    }
-    limit(tau, r.limiting_shear * c.pressure)
+    thermal_eyring_stress_with(r, c, v_s, ln_vs, ln_h, solve_thermal_eyring)
 }
 
 /// [`thermal_eyring_stress_ln`] with the film equation y = asinh(X exp(-B y)) solved by
@@ -157,6 +140,12 @@ pub fn thermal_eyring_stress_ln(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: 
 /// quasi-static model's; the dynamic model keeps Newton's (its results unchanged).
 #[inline(always)]
 pub fn thermal_eyring_stress_ln_halley(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: f64, ln_h: f64) -> f64 {
+    thermal_eyring_stress_with(r, c, v_s, ln_vs, ln_h, solve_thermal_eyring_halley)
+}
+
+/// The thermal Eyring stress with the film equation solved by `solve(ln X, B)`.
+#[inline(always)]
+fn thermal_eyring_stress_with(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: f64, ln_h: f64, solve: fn(f64, f64) -> f64) -> f64 {
     let tau0 = r.eyring_stress;
     let h = c.film.max(1e-9);
     // X = eta gamma_dot / tau_0
@@ -166,7 +155,7 @@ pub fn thermal_eyring_stress_ln_halley(r: &Rheology, c: &FilmContact, v_s: f64, 
     let peclet = c.entrainment.abs() * b * (0.5 / STEEL_DIFFUSIVITY);
     let heat = 0.376 * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt()) + h / (12.0 * r.conductivity);
     let heating = r.beta_at(c.ln_eta) * tau0 * v_s * heat;
-    let y = solve_thermal_eyring_halley(ln_x, heating);
+    let y = solve(ln_x, heating);
     let mut tau = tau0 * y;
     // elastic entry (Maxwell): mean over the transit time T = 2 b / u_e
     if r.shear_modulus > 0.0 && c.entrainment.abs() > 0.0 && tau > 0.0 {
