@@ -81,21 +81,8 @@ impl Lubricant {
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn raceway_mu_film(&self, w: f64, p_mean: f64, h: f64, ln_h: f64, u_e: f64, v_s: f64, ln_vs: f64, boundary_slide_roll: f64) -> f64 {
-        let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
-        let film = if share < 1.0 && v_s > 0.0 {
-            let contact = FilmContact {
-                pressure: p_mean,
-                ln_eta: self.viscosity.ln_eta(p_mean),
-                film: h,
-                half_width: 0.5 * w / p_mean,
-                entrainment: u_e,
-            };
-            traction::thermal_eyring_stress_ln(&self.rheology, &contact, v_s, ln_vs, ln_h) / p_mean
-        } else {
-            0.0
-        };
-        let boundary = if share > 0.0 { boundary_mu(boundary_slide_roll) } else { 0.0 };
-        share * boundary + (1.0 - share) * film
+        let stress = traction::thermal_eyring_stress_ln;
+        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, stress)
     }
 
     /// [`Lubricant::raceway_mu_film`] with the film equation of the thermal Eyring law solved
@@ -114,6 +101,25 @@ impl Lubricant {
         ln_vs: f64,
         boundary_slide_roll: f64,
     ) -> f64 {
+        let stress = traction::thermal_eyring_stress_ln_halley;
+        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, stress)
+    }
+
+    /// The coefficient of [`Lubricant::raceway_mu_film`] with the film stress law `stress`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn raceway_mu_film_with(
+        &self,
+        w: f64,
+        p_mean: f64,
+        h: f64,
+        ln_h: f64,
+        u_e: f64,
+        v_s: f64,
+        ln_vs: f64,
+        boundary_slide_roll: f64,
+        stress: fn(&Rheology, &FilmContact, f64, f64, f64) -> f64,
+    ) -> f64 {
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
         let film = if share < 1.0 && v_s > 0.0 {
             let contact = FilmContact {
@@ -123,7 +129,7 @@ impl Lubricant {
                 half_width: 0.5 * w / p_mean,
                 entrainment: u_e,
             };
-            traction::thermal_eyring_stress_ln_halley(&self.rheology, &contact, v_s, ln_vs, ln_h) / p_mean
+            stress(&self.rheology, &contact, v_s, ln_vs, ln_h) / p_mean
         } else {
             0.0
         };

@@ -199,43 +199,32 @@ pub fn limit(tau: f64, tau_l: f64) -> f64 {
 /// bracket guards the first steps.
 #[inline]
 fn solve_thermal_eyring(ln_x: f64, heating: f64) -> f64 {
-    if !(heating > 0.0) {
-        return asinh_exp(ln_x);
-    }
-    let mut y = if ln_x > 0.0 {
-        (ln_x + std::f64::consts::LN_2) / (1.0 + heating)
-    } else {
-        let x = fm::exp(ln_x);
-        x / (1.0 + heating * x)
-    };
-    let (mut lo, mut hi) = (0.0, f64::INFINITY);
-    for _ in 0..60 {
-        let g = ln_x - heating * y;
-        let (asinh, dz) = asinh_exp_and_slope(g);
+    solve_thermal_eyring_by(ln_x, heating, |y| {
+        let (asinh, dz) = asinh_exp_and_slope(ln_x - heating * y);
         let f = y - asinh;
-        if f > 0.0 {
-            hi = y;
-        } else {
-            lo = y;
-        }
         // d asinh(e^g)/dy = -B e^g / sqrt(1 + e^2g)
-        let step = f / (1.0 + heating * dz);
-        if step.abs() <= 1e-9 * y.max(1e-300) {
-            return y - step;
-        }
-        let next = y - step;
-        y = if next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi.min(2.0 * y.max(lo)))
-        };
-    }
-    y
+        (f, f / (1.0 + heating * dz))
+    })
 }
 
 /// [`solve_thermal_eyring`] by Halley's method, with the same start, bracket and stopping rule.
 #[inline]
 fn solve_thermal_eyring_halley(ln_x: f64, heating: f64) -> f64 {
+    solve_thermal_eyring_by(ln_x, heating, |y| {
+        let (asinh, dz, x) = asinh_exp_slope_and_x(ln_x - heating * y);
+        let f = y - asinh;
+        // f' = 1 + B dz, f'' = -B^2 dz / (1 + e^2g)  (d dz / dg = dz / (1 + e^2g))
+        let d1 = 1.0 + heating * dz;
+        let d2 = -heating * heating * dz / (1.0 + x * x);
+        (f, 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2))
+    })
+}
+
+/// The film equation's iteration shared by both methods: start from the regimes' closed forms,
+/// `residual_and_step(y)` = (f(y), the method's step), keep a bracket of the root, stop when a
+/// step is below 1e-9 y.
+#[inline(always)]
+fn solve_thermal_eyring_by(ln_x: f64, heating: f64, mut residual_and_step: impl FnMut(f64) -> (f64, f64)) -> f64 {
     if !(heating > 0.0) {
         return asinh_exp(ln_x);
     }
@@ -247,18 +236,12 @@ fn solve_thermal_eyring_halley(ln_x: f64, heating: f64) -> f64 {
     };
     let (mut lo, mut hi) = (0.0, f64::INFINITY);
     for _ in 0..60 {
-        let g = ln_x - heating * y;
-        let (asinh, dz, x) = asinh_exp_slope_and_x(g);
-        let f = y - asinh;
+        let (f, step) = residual_and_step(y);
         if f > 0.0 {
             hi = y;
         } else {
             lo = y;
         }
-        // f' = 1 + B dz, f'' = -B^2 dz / (1 + e^2g)  (d dz / dg = dz / (1 + e^2g))
-        let d1 = 1.0 + heating * dz;
-        let d2 = -heating * heating * dz / (1.0 + x * x);
-        let step = 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
         if step.abs() <= 1e-9 * y.max(1e-300) {
             return y - step;
         }
