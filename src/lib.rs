@@ -7,6 +7,7 @@
 //! - [`contact`]: contact laws (Johnson, Palmgren, Hertz point contact)
 //! - [`tribology`]: film thickness, traction, rolling resistance; [`journal_film`]: the
 //!   cage land's short-bearing oil film
+//! - [`rating`]: ISO 281 load rating and life, ISO/TS 16281 lamina life
 //! - [`quasi_static`]: fidelity 0, the quasi-static equilibrium and friction torque
 //! - [`dynamic`]: fidelity 1, roller/cage/cone dynamics with an adaptive integrator
 //! - [`model`], [`simulation`]: parameters/inputs/outputs and the steppable element
@@ -24,6 +25,7 @@ pub mod journal_film;
 pub mod model;
 pub mod model_description;
 pub mod quasi_static;
+pub mod rating;
 pub mod simulation;
 pub mod skf_friction;
 pub mod tribology;

@@ -407,6 +407,14 @@ pub struct Outputs {
     pub reaction_fx: f64,
     pub reaction_my: f64,
     pub reaction_mz: f64,
+    /// Radial forces carried by the bearing (the opposite of the rollers' force on the cone).
+    pub reaction_fy: f64,
+    pub reaction_fz: f64,
+    /// ISO 281 basic dynamic load rating (N).
+    pub rating_c: f64,
+    /// ISO 281 basic rating life and ISO/TS 16281 basic reference rating life (h).
+    pub life_l10: f64,
+    pub life_l10r: f64,
     pub tilt_max: f64,
     pub tilt_mean: f64,
     pub skew_max: f64,
@@ -459,6 +467,11 @@ impl Outputs {
             reaction_fx,
             reaction_my,
             reaction_mz,
+            reaction_fy,
+            reaction_fz,
+            rating_c,
+            life_l10,
+            life_l10r,
             tilt_max,
             tilt_mean,
             skew_max,
@@ -503,6 +516,11 @@ impl Outputs {
         self.reaction_fx.clone_from(reaction_fx);
         self.reaction_my.clone_from(reaction_my);
         self.reaction_mz.clone_from(reaction_mz);
+        self.reaction_fy.clone_from(reaction_fy);
+        self.reaction_fz.clone_from(reaction_fz);
+        self.rating_c.clone_from(rating_c);
+        self.life_l10.clone_from(life_l10);
+        self.life_l10r.clone_from(life_l10r);
         self.tilt_max.clone_from(tilt_max);
         self.tilt_mean.clone_from(tilt_mean);
         self.skew_max.clone_from(skew_max);
@@ -587,6 +605,11 @@ impl Outputs {
             self.reaction_fx,
             self.reaction_my,
             self.reaction_mz,
+            self.reaction_fy,
+            self.reaction_fz,
+            self.rating_c,
+            self.life_l10,
+            self.life_l10r,
             self.tilt_max,
             self.tilt_mean,
             self.skew_max,

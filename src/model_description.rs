@@ -39,22 +39,26 @@ pub const LICENSE: &str = "MIT License (documentation/LICENSE.txt)";
 /// so that equal sources give equal model descriptions and GUIDs.
 pub const GENERATION_DATE: &str = env!("TRB_SOURCE_DATE");
 
-/// Units with their SI base-unit exponents (kg, m, s, rad, K) and display units (name, factor).
-const UNITS: &[(&str, [i32; 5], &[(&str, f64)])] = &[
-    ("1", [0, 0, 0, 0, 0], &[]),
-    ("m", [0, 1, 0, 0, 0], &[]),
-    ("kg", [1, 0, 0, 0, 0], &[]),
-    ("s", [0, 0, 1, 0, 0], &[]),
-    ("N", [1, 1, -2, 0, 0], &[]),
-    ("N.m", [1, 2, -2, 0, 0], &[]),
-    ("W", [1, 2, -3, 0, 0], &[]),
-    ("rad", [0, 0, 0, 1, 0], &[("deg", 57.295_779_513_082_32)]),
-    ("rad/s", [0, 0, -1, 1, 0], &[("rpm", 9.549_296_585_513_72)]),
-    ("Pa.s", [1, -1, -1, 0, 0], &[]),
-    ("1/Pa", [-1, 1, 2, 0, 0], &[]),
-    ("Pa", [1, -1, -2, 0, 0], &[]),
-    ("1/K", [0, 0, 0, 0, -1], &[]),
-    ("W/(m.K)", [1, 1, -3, 0, -1], &[]),
+/// Units with their SI base-unit exponents (kg, m, s, rad, K), the factor of the unit to its
+/// base units (1 for SI units; an hour is 3600 s) and display units (name, factor, offset).
+const UNITS: &[(&str, [i32; 5], f64, &[(&str, f64, f64)])] = &[
+    ("1", [0, 0, 0, 0, 0], 1.0, &[]),
+    ("m", [0, 1, 0, 0, 0], 1.0, &[]),
+    ("kg", [1, 0, 0, 0, 0], 1.0, &[]),
+    ("s", [0, 0, 1, 0, 0], 1.0, &[]),
+    ("h", [0, 0, 1, 0, 0], 3600.0, &[]),
+    ("N", [1, 1, -2, 0, 0], 1.0, &[]),
+    ("N.m", [1, 2, -2, 0, 0], 1.0, &[]),
+    ("W", [1, 2, -3, 0, 0], 1.0, &[]),
+    ("rad", [0, 0, 0, 1, 0], 1.0, &[("deg", 57.295_779_513_082_32, 0.0)]),
+    ("rad/s", [0, 0, -1, 1, 0], 1.0, &[("rpm", 9.549_296_585_513_72, 0.0)]),
+    ("Pa.s", [1, -1, -1, 0, 0], 1.0, &[]),
+    ("m2/s", [0, 2, -1, 0, 0], 1.0, &[("cSt", 1e6, 0.0)]),
+    ("1/Pa", [-1, 1, 2, 0, 0], 1.0, &[]),
+    ("Pa", [1, -1, -2, 0, 0], 1.0, &[]),
+    ("K", [0, 0, 0, 0, 1], 1.0, &[("degC", 1.0, -273.15)]),
+    ("1/K", [0, 0, 0, 0, -1], 1.0, &[]),
+    ("W/(m.K)", [1, 1, -3, 0, -1], 1.0, &[]),
 ];
 
 fn xml_escape(s: &str) -> String {
@@ -104,20 +108,28 @@ fn render(bearing: &Bearing, guid: &str) -> String {
         r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="false" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#
     );
     let _ = writeln!(x, "  <UnitDefinitions>");
-    for (name, [kg, m, s, rad, k], displays) in UNITS {
+    for (name, [kg, m, s, rad, k], factor, displays) in UNITS {
         let mut base = String::new();
         for (sym, e) in [("kg", kg), ("m", m), ("s", s), ("rad", rad), ("K", k)] {
             if *e != 0 {
                 let _ = write!(base, r#" {sym}="{e}""#);
             }
         }
+        if *factor != 1.0 {
+            let _ = write!(base, r#" factor="{}""#, real(*factor));
+        }
         if displays.is_empty() {
             let _ = writeln!(x, r#"    <Unit name="{}"><BaseUnit{base}/></Unit>"#, xml_escape(name));
         } else {
             let _ = writeln!(x, r#"    <Unit name="{}">"#, xml_escape(name));
             let _ = writeln!(x, r#"      <BaseUnit{base}/>"#);
-            for (d, f) in displays.iter() {
-                let _ = writeln!(x, r#"      <DisplayUnit name="{d}" factor="{}"/>"#, real(*f));
+            for (d, f, offset) in displays.iter() {
+                let offset = if *offset != 0.0 {
+                    format!(r#" offset="{}""#, real(*offset))
+                } else {
+                    String::new()
+                };
+                let _ = writeln!(x, r#"      <DisplayUnit name="{d}" factor="{}"{offset}/>"#, real(*f));
             }
             let _ = writeln!(x, "    </Unit>");
         }

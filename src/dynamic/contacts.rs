@@ -516,12 +516,14 @@ struct Race<'a> {
 }
 
 /// Sums of one roller's slice loop against one raceway (force on the roller, its moment about
-/// the roller's centre of mass, normal load, dissipated power).
+/// the roller's centre of mass, normal load, sliding friction force, dissipated power).
 #[derive(Default)]
 struct LineSum {
     f: V3,
     m: V3,
     q: f64,
+    /// Net tangential (sliding traction) force of the slices on the roller.
+    traction: V3,
     power: f64,
     extrapolated: bool,
 }
@@ -530,8 +532,10 @@ struct LineSum {
 /// the contact point (clearance and lobes of the cup; zero for the cone) and its derivative
 /// along the azimuth of the point: a lobe's slope tilts the raceway normal, so the force
 /// stays the gradient of the contact's energy and the damping sees the lobe's rate.
+/// `slice_loads`, when given (outputs, not the right-hand side), receives each slice's
+/// normal load (zero where it does not touch).
 #[inline(always)]
-fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f64)) -> LineSum {
+fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut [f64]>, gap: impl Fn(&V3) -> (f64, f64)) -> LineSum {
     let line = race.line;
     let (r0, r1) = (line.reference[0], line.reference[1]);
     let (n0, n1) = (line.normal[0], line.normal[1]);
@@ -545,6 +549,9 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
     let u_c = (race.vel + ring_c) * 0.5 - pt_c;
     let w_e = (race.w + race.ring_omega) * 0.5 - race.pt_omega;
     let mut sum = LineSum::default();
+    if let Some(loads) = slice_loads.as_deref_mut() {
+        loads.fill(0.0);
+    }
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
         let cl = race.pos + race.a * c.s_cm[k];
@@ -625,6 +632,10 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, gap: impl Fn(&V3) -> (f64, f
         sum.f += fk;
         sum.m += lever.cross(&fk);
         sum.q += q;
+        sum.traction -= v_t * coef;
+        if let Some(loads) = slice_loads.as_deref_mut() {
+            loads[k] = q;
+        }
         sum.power += coef * vs * vs + damping_power.max(0.0);
         if couple > 0.0 {
             // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
@@ -652,6 +663,7 @@ pub(crate) fn evaluate(
     y: &[f64],
     mut dy: Option<&mut [f64]>,
     records: &mut [RollerRecord],
+    mut slice_loads: Option<&mut [f64]>,
 ) -> Totals {
     let z = g.z;
     let mut tot = Totals::default();
@@ -720,8 +732,15 @@ pub(crate) fn evaluate(
             pt_omega: V3::x() * psid,
             gap_max: -c.half_clearance * c.cos_o,
         };
+        let (cone_loads, cup_loads) = match slice_loads.as_deref_mut() {
+            Some(all) => {
+                let (cone, cup) = all[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
+                (Some(cone), Some(cup))
+            }
+            None => (None, None),
+        };
         let cup_sum = if c.lobes > 0 {
-            race_slices(c, &cup, dd, |q: &V3| {
+            race_slices(c, &cup, dd, cup_loads, |q: &V3| {
                 let nl = c.lobes as f64;
                 let (sl, cl) = libm::sincos(nl * libm::atan2(q[2], q[1]));
                 let lobe = 0.5 * c.waveform * (1.0 - cl);
@@ -730,7 +749,7 @@ pub(crate) fn evaluate(
             })
         } else {
             let gap = -c.half_clearance * c.cos_o;
-            race_slices(c, &cup, dd, |_: &V3| (gap, 0.0))
+            race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
         };
         // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
         let cone = Race {
@@ -745,13 +764,13 @@ pub(crate) fn evaluate(
             pt_omega: x_l * psid,
             gap_max: 0.0,
         };
-        let cone_sum = race_slices(c, &cone, dd, |_: &V3| (0.0, 0.0));
+        let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
         let (f_cone_r, m_cone_r) = (rot * cone_sum.f, rot * cone_sum.m);
         tot.p_raceway += cup_sum.power + cone_sum.power;
         tot.extrapolated |= cup_sum.extrapolated | cone_sum.extrapolated;
 
         // flange: roller-end sphere on the conical rib
-        let (mut f_fl, mut m_fl, mut q_fl) = (V3::zeros(), V3::zeros(), 0.0);
+        let (mut f_fl, mut m_fl, mut q_fl, mut sliding_fl) = (V3::zeros(), V3::zeros(), 0.0, 0.0);
         if let Some(fl) = &c.flange {
             let s_centre = pos + a * fl.s_sphere;
             let sl = rot_t * (s_centre - origin);
@@ -811,6 +830,7 @@ pub(crate) fn evaluate(
                     (V3::zeros(), 0.0)
                 };
                 let fk = n * q + f_t;
+                sliding_fl = f_t.norm();
                 f_fl = fk;
                 m_fl = lever.cross(&fk);
                 q_fl = q;
@@ -912,6 +932,7 @@ pub(crate) fn evaluate(
             f_cone: -(f_cone_r + f_fl),
             f_cage: -f_pk,
             m_cage: -((pos - cage_pos).cross(&f_pk) + m_pk)[0],
+            sliding: cone_sum.traction.norm() + cup_sum.traction.norm() + sliding_fl,
         };
         // on the cone: force, moment about the origin and about its own axis
         let f_on_cone = rec.f_cone;
@@ -920,6 +941,8 @@ pub(crate) fn evaluate(
         tot.m_cone += m_on_cone_pos + pos.cross(&f_on_cone);
         tot.t_cone_raceway += (-m_cone_r - (pos - origin).cross(&f_cone_r)).dot(&axis_c);
         tot.t_cone_flange += (-m_fl - (pos - origin).cross(&f_fl)).dot(&axis_c);
+        // on the cup (fixed): the opposite of the cup contact's force and moment on the roller
+        tot.t_cup -= (cup_sum.m + pos.cross(&cup_sum.f))[0];
         tot.f_cage += rec.f_cage;
         tot.m_cage += rec.m_cage;
         records[j] = rec;

@@ -92,6 +92,9 @@ pub(crate) struct RollerRecord {
     pub f_cone: V3,
     pub f_cage: V3,
     pub m_cage: f64,
+    /// Net sliding traction force on the roller: the magnitudes of the cone's and the cup's
+    /// net tangential slice forces and of the rib's friction force, added.
+    pub sliding: f64,
 }
 
 /// Totals of one evaluation.
@@ -110,6 +113,8 @@ pub(crate) struct Totals {
     /// Moment of raceway and flange forces on the cone about its own axis.
     pub t_cone_raceway: f64,
     pub t_cone_flange: f64,
+    /// Moment of the roller contacts on the cup about the bearing axis.
+    pub t_cup: f64,
     pub extrapolated: bool,
 }
 
@@ -121,6 +126,10 @@ pub struct Dynamic {
     pub(crate) c: contacts::Constants,
     ig: Integrator,
     records: Vec<RollerRecord>,
+    /// ISO 281 / ISO/TS 16281 ratings (one lamina per slice) and the slice loads of the
+    /// outputs' evaluation (per roller: cone slices, then cup slices).
+    rating: crate::rating::BearingRating,
+    slice_loads: Vec<f64>,
 }
 
 /// The integrator selected by the parameter `integrator`.
@@ -145,7 +154,7 @@ struct Model<'a> {
 
 impl BlockSystem for Model<'_> {
     fn rhs(&mut self, y: &[f64], dy: &mut [f64]) {
-        contacts::evaluate(self.g, self.p, self.c, self.inputs, y, Some(dy), self.records);
+        contacts::evaluate(self.g, self.p, self.c, self.inputs, y, Some(dy), self.records, None);
     }
     fn shares(&self, out: &mut [f64]) {
         for (j, r) in self.records.iter().enumerate() {
@@ -179,6 +188,8 @@ impl Dynamic {
         };
         Ok(Dynamic {
             records: vec![RollerRecord::default(); g.z],
+            rating: crate::rating::BearingRating::new(bearing, params.slices),
+            slice_loads: vec![0.0; 2 * params.slices * g.z],
             g,
             p: params.clone(),
             c,
@@ -274,7 +285,7 @@ impl Dynamic {
         let result = match &mut this.ig {
             Integrator::Dopri5(ig) => ig.integrate(
                 |_t, y, dy| {
-                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
+                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records, None);
                 },
                 &mut t,
                 &mut state.y,
@@ -285,7 +296,7 @@ impl Dynamic {
             ),
             Integrator::MilneHamming(ig) => ig.integrate(
                 |y, dy| {
-                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records);
+                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records, None);
                 },
                 &mut t,
                 &mut state.y,
@@ -336,7 +347,16 @@ impl Dynamic {
     /// Fill `out` from `state`.
     pub fn write_outputs(&mut self, state: &DynamicState, inputs: &Inputs, out: &mut Outputs) {
         let g = &self.g;
-        let totals = contacts::evaluate(g, &self.p, &self.c, inputs, &state.y, None, &mut self.records);
+        let totals = contacts::evaluate(
+            g,
+            &self.p,
+            &self.c,
+            inputs,
+            &state.y,
+            None,
+            &mut self.records,
+            Some(&mut self.slice_loads),
+        );
         let y = &state.y;
         let z = g.z;
         for j in 0..z {
@@ -355,6 +375,7 @@ impl Dynamic {
             out.nis[j] = r.m_cone.dot(&r.skew_axis);
             out.nos[j] = r.m_cup.dot(&r.skew_axis);
             out.nfs[j] = r.m_flange.dot(&r.skew_axis);
+            out.sliding_friction[j] = r.sliding;
         }
         out.cone_x = if self.p.preload == Preload::Displacement {
             inputs.axial_displacement
@@ -366,10 +387,20 @@ impl Dynamic {
         out.reaction_fx = if g.axial { -totals.f_cone[0] } else { 0.0 };
         out.reaction_my = -totals.m_cone[1];
         out.reaction_mz = -totals.m_cone[2];
+        out.reaction_fy = -totals.f_cone[1];
+        out.reaction_fz = -totals.f_cone[2];
+        out.rating_c = self.rating.c_r;
+        let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
+        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, 0.0);
+        out.life_l10r = self.rating.life_l10r(&self.slice_loads, inputs.speed, 0.0);
         out.cage_speed = contacts::cage_speed(g, &self.p, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
         let total = -(totals.t_cone_raceway + totals.t_cone_flange);
         out.friction_torque = total;
+        // the ring torques of [L22] (docs/model.md): the moments of the contact forces about
+        // the bearing axis, the cone's as the torque driving it, the cup's as it feels it
+        out.friction_torque_cone = total;
+        out.friction_torque_cup = totals.t_cup;
         out.power_loss = totals.p_raceway + totals.p_flange + totals.p_cage;
         // Its parts split it in proportion to the power dissipated at the raceways, the flange
         // and the cage, so they always add up to it (without dissipation: the moments of the
@@ -425,7 +456,7 @@ impl Dynamic {
 
     /// Right-hand side at `state` (for tests and benchmarks).
     pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
-        contacts::evaluate(&self.g, &self.p, &self.c, inputs, y, Some(dy), &mut self.records);
+        contacts::evaluate(&self.g, &self.p, &self.c, inputs, y, Some(dy), &mut self.records, None);
     }
 }
 

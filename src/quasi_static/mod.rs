@@ -265,6 +265,8 @@ pub struct QuasiStatic {
     /// Slice loads per roller (cone slices, then cup slices) of the last evaluation, for the
     /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
+    /// ISO 281 / ISO/TS 16281 ratings of the bearing with one lamina per slice.
+    rating: crate::rating::BearingRating,
     /// Scratch for the unknowns of a solve and for one roller's slice loads (allocated once).
     x: Vec<f64>,
     local_scratch: Vec<f64>,
@@ -304,6 +306,7 @@ impl QuasiStatic {
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
+            rating: crate::rating::BearingRating::new(bearing, params.slices),
             skew,
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
             x: Vec::new(),
@@ -1444,9 +1447,7 @@ impl QuasiStatic {
 
     fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
         let z = self.geometry.z;
-        let mut my = 0.0;
-        let mut mz = 0.0;
-        let mut fx = 0.0;
+        let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for j in 0..z {
             let e = &self.evals[j];
             let st = &self.setup[j];
@@ -1454,6 +1455,8 @@ impl QuasiStatic {
             my += st.sin_psi * e.m_cone;
             mz -= st.cos_psi * e.m_cone;
             fx -= e.f_cone[0];
+            fy -= e.f_cone[1] * st.cos_psi;
+            fz -= e.f_cone[1] * st.sin_psi;
             out.qi[j] = e.qi;
             out.qo[j] = e.qo;
             out.qf[j] = e.qf;
@@ -1503,7 +1506,22 @@ impl QuasiStatic {
         out.friction_torque_cone = torque.cone;
         out.friction_torque_cup = torque.cup;
         out.power_loss = out.friction_torque * inputs.speed;
+        self.write_reactions_and_lives(fy, fz, evaluated, inputs, out);
         out.summarize();
+    }
+
+    /// The radial reactions (the opposite of the rollers' radial force on the cone: the load
+    /// the bearing carries, as `reaction.Fx`), the load rating and the fatigue lives from the
+    /// carried loads and the slice loads of the first `rollers` rollers in
+    /// `slice_load_buffer` (all of them, or one standing for all when the load is axisymmetric).
+    fn write_reactions_and_lives(&self, fy: f64, fz: f64, rollers: usize, inputs: &Inputs, out: &mut Outputs) {
+        out.reaction_fy = fy;
+        out.reaction_fz = fz;
+        out.rating_c = self.rating.c_r;
+        let fr = (fy * fy + fz * fz).sqrt();
+        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, 0.0);
+        let loads = &self.slice_load_buffer[..2 * self.geometry.slices * rollers];
+        out.life_l10r = self.rating.life_l10r(loads, inputs.speed, 0.0);
     }
 
     /// Slice loads of roller `j` at the solution `x` (cone, cup), for the friction model and tests.

@@ -737,24 +737,26 @@ impl QuasiStatic {
         Ok(report)
     }
 
-    fn write_skew_outputs(&self, x: &[f64], evals: &[SkewEval], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
+    fn write_skew_outputs(&mut self, x: &[f64], evals: &[SkewEval], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
+        let mut slice_loads = std::mem::take(&mut self.slice_load_buffer);
         let g = &self.geometry;
         let sk = self.skew.as_ref().expect("skew model");
         let z = g.z;
+        let ns = g.slices;
         let speed = inputs.speed;
         let mu = self.params.mu;
-        let (mut my, mut mz, mut fx) = (0.0, 0.0, 0.0);
+        let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut h_race, mut h_flange, mut h_cage) = (0.0, 0.0, 0.0);
         let (mut m_cone, mut m_cup) = (0.0, 0.0);
         let e_prime = g.e_prime;
-        let mut cone_loads = vec![0.0; g.slices];
-        let mut cup_loads = vec![0.0; g.slices];
         for j in 0..z {
             let e = &evals[j];
             let st = &self.setup[j];
             my += st.sin_psi * e.m_cone;
             mz -= st.cos_psi * e.m_cone;
             fx -= e.f_cone[0];
+            fy -= e.f_cone[1] * st.cos_psi;
+            fz -= e.f_cone[1] * st.sin_psi;
             let b0 = 3 + PER * j;
             out.qi[j] = e.qi;
             out.qo[j] = e.qo;
@@ -769,9 +771,10 @@ impl QuasiStatic {
             out.nos[j] = e.nos;
             out.nfs[j] = e.nfs;
             // Slice loads at the solution, for the microslip power and the ring torques.
-            self.skew_slice_loads(x, j, &mut cone_loads, &mut cup_loads);
+            let (cone_loads, cup_loads) = slice_loads[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
+            self.skew_slice_loads(x, j, cone_loads, cup_loads);
             let mut sliding = 0.0;
-            for (sl, loads, is_cone) in [(&sk.cone, &cone_loads, true), (&sk.cup, &cup_loads, false)] {
+            for (sl, loads, is_cone) in [(&sk.cone, &*cone_loads, true), (&sk.cup, &*cup_loads, false)] {
                 let mut traction = 0.0;
                 for k in 0..g.slices {
                     let q = loads[k];
@@ -832,6 +835,8 @@ impl QuasiStatic {
         out.friction_torque_cone = m_cone;
         out.friction_torque_cup = m_cup;
         out.power_loss = out.friction_torque * speed;
+        self.slice_load_buffer = slice_loads;
+        self.write_reactions_and_lives(fy, fz, z, inputs, out);
         out.summarize();
     }
 
