@@ -31,12 +31,24 @@ pub enum Preload {
     Displacement = 1,
 }
 
+/// Which quantities of the cone's translation are inputs (parameter `causality`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LoadCausality {
+    /// Forces `Fx`, `Fy`, `Fz` in (or the axial displacement with `preload` = 1), cone
+    /// displacements out.
+    Force = 0,
+    /// Cone displacements relative to the cup `displacement.x/y/z` in, reactions out.
+    Displacement = 1,
+}
+
 /// Everything the user may set before initialization (FMU parameters).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Parameters {
     pub fidelity: Fidelity,
     pub lubrication: Lubrication,
     pub preload: Preload,
+    /// Forces or displacements in (the tilts are always inputs).
+    pub causality: LoadCausality,
     pub slices: usize,
     pub tolerance: f64,
     pub mu: f64,
@@ -123,6 +135,7 @@ impl Parameters {
             } else {
                 Preload::Force
             },
+            causality: LoadCausality::Force,
             slices: b.slices,
             tolerance: b.tolerance,
             mu: b.mu,
@@ -301,6 +314,8 @@ pub struct Inputs {
     pub fz: f64,
     /// Prescribed axial displacement (m) in displacement preload.
     pub axial_displacement: f64,
+    /// Cone displacement relative to the cup (x, y, z; m) in displacement causality.
+    pub displacement: [f64; 3],
 }
 
 impl Inputs {
@@ -314,6 +329,7 @@ impl Inputs {
             fy: b.fy,
             fz: b.fz,
             axial_displacement: b.axial_displacement,
+            displacement: [b.axial_displacement, 0.0, 0.0],
         }
     }
 
@@ -327,6 +343,9 @@ impl Inputs {
             ("Fy", self.fy),
             ("Fz", self.fz),
             ("axialDisplacement", self.axial_displacement),
+            ("displacement.x", self.displacement[0]),
+            ("displacement.y", self.displacement[1]),
+            ("displacement.z", self.displacement[2]),
         ];
         for (name, v) in named {
             if !v.is_finite() {
@@ -373,14 +392,20 @@ impl Inputs {
         }
         // Displacement preload: more than 5 % of the roller diameter is not a bearing any more.
         let max_disp = 0.05 * b.roller_mean_diameter;
-        if self.axial_displacement.abs() > max_disp {
-            return Err(ModelError::InvalidInput {
-                name: "axialDisplacement",
-                message: format!(
-                    "{:.3e} m exceeds the model's range of +-{:.3e} m",
-                    self.axial_displacement, max_disp
-                ),
-            });
+        for (name, v) in [
+            ("axialDisplacement", self.axial_displacement),
+            ("displacement.x", self.displacement[0]),
+            ("displacement.y", self.displacement[1]),
+            ("displacement.z", self.displacement[2]),
+        ] {
+            if v.abs() > max_disp {
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!(
+                        "{v:.3e} m exceeds the model's range of +-{max_disp:.3e} m (5 % of the roller diameter: the contact laws and the small-displacement kinematics end well before)"
+                    ),
+                });
+            }
         }
         Ok(())
     }
@@ -415,6 +440,8 @@ pub struct Outputs {
     /// ISO 281 basic rating life and ISO/TS 16281 basic reference rating life (h).
     pub life_l10: f64,
     pub life_l10r: f64,
+    /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
+    pub stiffness: [f64; 25],
     pub tilt_max: f64,
     pub tilt_mean: f64,
     pub skew_max: f64,
@@ -472,6 +499,7 @@ impl Outputs {
             rating_c,
             life_l10,
             life_l10r,
+            stiffness,
             tilt_max,
             tilt_mean,
             skew_max,
@@ -521,6 +549,7 @@ impl Outputs {
         self.rating_c.clone_from(rating_c);
         self.life_l10.clone_from(life_l10);
         self.life_l10r.clone_from(life_l10r);
+        self.stiffness.clone_from(stiffness);
         self.tilt_max.clone_from(tilt_max);
         self.tilt_mean.clone_from(tilt_mean);
         self.skew_max.clone_from(skew_max);
@@ -621,6 +650,7 @@ impl Outputs {
             self.solver_residual,
         ];
         scalars.iter().all(|v| v.is_finite())
+            && self.stiffness.iter().all(|v| v.is_finite())
             && [
                 &self.tilt,
                 &self.skew,

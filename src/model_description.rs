@@ -41,7 +41,8 @@ pub const GENERATION_DATE: &str = env!("TRB_SOURCE_DATE");
 
 /// Units with their SI base-unit exponents (kg, m, s, rad, K), the factor of the unit to its
 /// base units (1 for SI units; an hour is 3600 s) and display units (name, factor, offset).
-const UNITS: &[(&str, [i32; 5], f64, &[(&str, f64, f64)])] = &[
+type UnitRow = (&'static str, [i32; 5], f64, &'static [(&'static str, f64, f64)]);
+const UNITS: &[UnitRow] = &[
     ("1", [0, 0, 0, 0, 0], 1.0, &[]),
     ("m", [0, 1, 0, 0, 0], 1.0, &[]),
     ("kg", [1, 0, 0, 0, 0], 1.0, &[]),
@@ -49,6 +50,9 @@ const UNITS: &[(&str, [i32; 5], f64, &[(&str, f64, f64)])] = &[
     ("h", [0, 0, 1, 0, 0], 3600.0, &[]),
     ("N", [1, 1, -2, 0, 0], 1.0, &[]),
     ("N.m", [1, 2, -2, 0, 0], 1.0, &[]),
+    ("N/m", [1, 0, -2, 0, 0], 1.0, &[]),
+    ("N/rad", [1, 1, -2, -1, 0], 1.0, &[]),
+    ("N.m/rad", [1, 2, -2, -1, 0], 1.0, &[]),
     ("W", [1, 2, -3, 0, 0], 1.0, &[]),
     ("rad", [0, 0, 0, 1, 0], 1.0, &[("deg", 57.295_779_513_082_32, 0.0)]),
     ("rad/s", [0, 0, -1, 1, 0], 1.0, &[("rpm", 9.549_296_585_513_72, 0.0)]),
