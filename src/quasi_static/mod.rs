@@ -259,6 +259,8 @@ pub struct QuasiStatic {
     ls: f64,
     /// cross(P, n) about the bearing origin per cone slice, and for the flange.
     cone_chi: Vec<f64>,
+    /// cone_chi as alpha + beta lever (`stiffness.rs`).
+    cone_chi_fit: (f64, f64),
     flange_chi: f64,
     /// Kinematic cage speed per unit cone speed (epicyclic, with the slip rate).
     cage_ratio: f64,
@@ -309,6 +311,7 @@ impl QuasiStatic {
             .as_ref()
             .map(|f| crate::geometry::cross(f.point, f.normal))
             .unwrap_or(0.0);
+        let cone_chi_fit = QuasiStatic::chi_fit(&cone_chi, &geometry.cone.lever);
         let (ri, ro) = geometry.pitch_contact_radii();
         let cage_ratio = (1.0 - params.cage_slip_rate) * ri / (ri + ro);
         // Outer-raceway control: pure rolling on the cup at mid-roller.
@@ -341,6 +344,7 @@ impl QuasiStatic {
             geometry,
             params: params.clone(),
             ls,
+            cone_chi_fit,
             cone_chi,
             flange_chi,
             cage_ratio,

@@ -67,6 +67,19 @@ impl QuasiStatic {
         out
     }
 
+    /// chi_k = cross(P_k, n) of the cone's slices as alpha + beta lever_k (both are affine in
+    /// the slice station along the roller axis), from the end slices.
+    pub(super) fn chi_fit(chi: &[f64], lever: &[f64]) -> (f64, f64) {
+        let n = chi.len();
+        let span = if n >= 2 { lever[n - 1] - lever[0] } else { 0.0 };
+        if span == 0.0 {
+            let mean = chi.iter().sum::<f64>() / n as f64;
+            return (mean, 0.0);
+        }
+        let beta = (chi[n - 1] - chi[0]) / span;
+        (chi[0] - beta * lever[0], beta)
+    }
+
     /// B = dr/d(dx, dr, gamma) (3 x 3) and D = dF/d(dx, dr, gamma) (3 x 3) of roller `j` at
     /// `x`: the (dx, dr) columns from its evaluation, the gamma column from the slice
     /// stiffnesses of its cone line and flange contact (gamma moves slice k by chi_k).
@@ -78,20 +91,15 @@ impl QuasiStatic {
         let (a_roller, rho) = (x[3 + 3 * j], x[4 + 3 * j]);
         let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
         let ni = g.cone.normal;
-        let base = (x[0] - a_roller) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
-        // sums over the cone's slices: k chi, k chi lever / L_s, k chi^2
-        let (mut k_chi, mut k_chi_lever, mut k_chi2) = (0.0, 0.0, 0.0);
-        for k in 0..g.slices {
-            let chi = self.cone_chi[k];
-            let delta = base - theta * g.cone.lever[k] + st.gamma * chi - g.crown[k];
-            if delta <= 0.0 {
-                continue;
-            }
-            let (_, dq, _) = g.cone.law.load(k, delta);
-            k_chi += dq * chi;
-            k_chi_lever += dq * chi * g.cone.lever[k] / ls;
-            k_chi2 += dq * chi * chi;
-        }
+        debug_assert!(self.cone_chi.len() == g.slices);
+        // sums over the cone's slices: k chi, k chi lever / L_s, k chi^2, from the solve's own
+        // slice sums (chi_k = alpha + beta lever_k: both are affine in the slice station)
+        let (alpha, beta) = self.cone_chi_fit;
+        let s = &e.cone;
+        let bl = beta * ls;
+        let k_chi = alpha * s.k + bl * s.k_lever;
+        let k_chi_lever = alpha * s.k_lever + bl * s.k_lever2;
+        let k_chi2 = alpha * alpha * s.k + 2.0 * alpha * bl * s.k_lever + bl * bl * s.k_lever2;
         // r = sum q g with g = (n_x, n_r, lever / L_s): dr/dgamma = sum k g chi
         let mut b_gamma = Vector3::new(ni[0] * k_chi, ni[1] * k_chi, k_chi_lever);
         // F = -sum q (n_x, n_r, chi): dF/dgamma = -sum k (n_x, n_r, chi) chi
@@ -157,5 +165,26 @@ impl Linearisation {
         self.warm.clear();
         self.qs.solve(&at, cage_angle, &mut self.warm, &mut self.out)?;
         Ok(self.out.stiffness)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bearing::Bearing;
+    use crate::model::Parameters;
+
+    #[test]
+    fn the_cone_slices_chi_is_affine_in_their_lever() {
+        for name in ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"] {
+            let b = Bearing::preset(name).unwrap();
+            let qs = QuasiStatic::new(&b, &Parameters::from_bearing(&b)).unwrap();
+            let (alpha, beta) = qs.cone_chi_fit;
+            let scale = qs.cone_chi.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            for (k, chi) in qs.cone_chi.iter().enumerate() {
+                let fit = alpha + beta * qs.geometry.cone.lever[k];
+                assert!((fit - chi).abs() <= 1e-12 * scale, "{name} slice {k}: {fit} vs {chi}");
+            }
+        }
     }
 }
