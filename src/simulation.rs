@@ -87,6 +87,8 @@ pub struct Simulation {
     bearing: Bearing,
     state: State,
     model: Option<Model>,
+    /// The oil temperature the model's viscosity was set for.
+    model_oil_temperature: f64,
     /// The solve for the current inputs and parameters failed with this error: reading
     /// outputs again returns it instead of solving again (cleared by any change).
     failure: Option<ModelError>,
@@ -131,6 +133,7 @@ impl Simulation {
                 dynamic: None,
             },
             model: None,
+            model_oil_temperature: f64::NAN,
             failure: None,
             backup: Outputs::new(z),
         }
@@ -217,24 +220,33 @@ impl Simulation {
         &self.state.outputs
     }
 
+    /// Build the model for the parameters, with the oil's viscosity at the current oil
+    /// temperature; a new oil temperature rebuilds it (the state, warm start and dynamic state,
+    /// carries on).
     fn ensure_model(&mut self) -> Result<(), ModelError> {
+        let oil_t = self.state.inputs.oil_temperature;
+        if self.model.is_some() && self.model_oil_temperature.to_bits() != oil_t.to_bits() {
+            self.model = None;
+        }
         if self.model.is_none() {
             self.state.params.validate(&self.bearing)?;
-            let qs = Box::new(QuasiStatic::new(&self.bearing, &self.state.params)?);
-            self.model = Some(match self.state.params.fidelity {
+            let p = self.state.params.at_oil_temperature(oil_t, self.bearing.oil_temperature);
+            let qs = Box::new(QuasiStatic::new(&self.bearing, &p)?);
+            self.model = Some(match p.fidelity {
                 Fidelity::QuasiStatic => Model::QuasiStatic {
                     qs,
-                    linear: match self.state.params.skew_model {
-                        true => Some(Box::new(Linearisation::new(&self.bearing, &self.state.params)?)),
+                    linear: match p.skew_model {
+                        true => Some(Box::new(Linearisation::new(&self.bearing, &p)?)),
                         false => None,
                     },
                 },
                 Fidelity::Dynamic => Model::Dynamic {
                     qs,
-                    dynamic: Box::new(Dynamic::new(&self.bearing, &self.state.params)?),
-                    linear: Box::new(Linearisation::new(&self.bearing, &self.state.params)?),
+                    dynamic: Box::new(Dynamic::new(&self.bearing, &p)?),
+                    linear: Box::new(Linearisation::new(&self.bearing, &p)?),
                 },
             });
+            self.model_oil_temperature = oil_t;
         }
         Ok(())
     }
@@ -281,6 +293,9 @@ impl Simulation {
                 linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
                 report
             }
+        };
+        st.outputs.oil_viscosity = match self.model.as_ref().expect("model built") {
+            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs.oil_viscosity(),
         };
         if !st.outputs.all_finite() {
             // Nothing that is not finite ever leaves the element: keep the last valid outputs.
@@ -351,6 +366,9 @@ impl Simulation {
             var::OIL_BETA => p.oil_beta,
             var::OIL_CONDUCTIVITY => p.oil_conductivity,
             var::FLANGE_ROUGHNESS => p.flange_roughness,
+            var::OIL_NU40 => p.oil_nu40,
+            var::OIL_NU100 => p.oil_nu100,
+            var::OIL_DENSITY => p.oil_density,
             var::CONTACT_DAMPING => p.contact_damping,
             var::CONE_MASS => p.cone_mass,
             var::MAX_STEP => p.max_step,
@@ -365,6 +383,7 @@ impl Simulation {
             var::DISPLACEMENT_X => i.displacement[0],
             var::DISPLACEMENT_Y => i.displacement[1],
             var::DISPLACEMENT_Z => i.displacement[2],
+            var::OIL_TEMPERATURE => i.oil_temperature,
             var::FRICTION_TORQUE => o.friction_torque,
             var::FRICTION_TORQUE_RACEWAY => o.friction_torque_raceway,
             var::FRICTION_TORQUE_FLANGE => o.friction_torque_flange,
@@ -385,6 +404,7 @@ impl Simulation {
             var::RATING_C => o.rating_c,
             var::LIFE_L10 => o.life_l10,
             var::LIFE_L10R => o.life_l10r,
+            var::OIL_VISCOSITY => o.oil_viscosity,
             v @ var::STIFFNESS_1_1..=var::STIFFNESS_5_5 => o.stiffness[(v - var::STIFFNESS_1_1) as usize],
             var::TILT_MAX => o.tilt_max,
             var::TILT_MEAN => o.tilt_mean,
@@ -453,6 +473,9 @@ impl Simulation {
             var::OIL_BETA => &mut p.oil_beta,
             var::OIL_CONDUCTIVITY => &mut p.oil_conductivity,
             var::FLANGE_ROUGHNESS => &mut p.flange_roughness,
+            var::OIL_NU40 => &mut p.oil_nu40,
+            var::OIL_NU100 => &mut p.oil_nu100,
+            var::OIL_DENSITY => &mut p.oil_density,
             var::CONTACT_DAMPING => &mut p.contact_damping,
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
@@ -467,6 +490,7 @@ impl Simulation {
             var::DISPLACEMENT_X => &mut i.displacement[0],
             var::DISPLACEMENT_Y => &mut i.displacement[1],
             var::DISPLACEMENT_Z => &mut i.displacement[2],
+            var::OIL_TEMPERATURE => &mut i.oil_temperature,
             _ => return Err(AccessError::UnknownReference(vr)),
         };
         if slot.to_bits() != value.to_bits() {

@@ -435,19 +435,64 @@ fn write_drivetrain(h: &mut String) {
         "<table><tr><th>this FMU</th><th>meaning and sign</th><th>usual name (ISO 281, ISO/TS 16281, bearing tools)</th></tr>"
     );
     for (ours, meaning, usual) in [
-        ("reaction.Fx", "axial load the bearing carries; > 0 pushes the cone into the cup (loads the bearing)", "axial load F_a"),
-        ("reaction.Fy, reaction.Fz", "radial load components the bearing carries (= Fy, Fz in force causality)", "radial load F_r = |(F_y, F_z)|"),
-        ("reaction.My, reaction.Mz", "moment the shaft applies to hold the tilts (positive work with xi, zeta)", "tilting moment M"),
-        ("displacement.x / cone.x", "axial displacement of the cone relative to the cup, > 0 into the bearing", "axial deflection δ_a (inner ring relative to outer)"),
-        ("displacement.y/z / cone.y/z", "radial displacement of the cone relative to the cup", "radial deflection δ_r"),
+        (
+            "reaction.Fx",
+            "axial load the bearing carries; > 0 pushes the cone into the cup (loads the bearing)",
+            "axial load F_a",
+        ),
+        (
+            "reaction.Fy, reaction.Fz",
+            "radial load components the bearing carries (= Fy, Fz in force causality)",
+            "radial load F_r = |(F_y, F_z)|",
+        ),
+        (
+            "reaction.My, reaction.Mz",
+            "moment the shaft applies to hold the tilts (positive work with xi, zeta)",
+            "tilting moment M",
+        ),
+        (
+            "displacement.x / cone.x",
+            "axial displacement of the cone relative to the cup, > 0 into the bearing",
+            "axial deflection δ_a (inner ring relative to outer)",
+        ),
+        (
+            "displacement.y/z / cone.y/z",
+            "radial displacement of the cone relative to the cup",
+            "radial deflection δ_r",
+        ),
         ("xi, zeta", "tilts of the cone about y and z", "misalignment / tilt angle"),
-        ("stiffness[i,j]", "d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), rollers re-equilibrated (tangent)", "bearing stiffness matrix K (5\u{d7}5, e.g. c_rr, c_aa, c_tt)"),
-        ("rating.C", "ISO 281 C_r from the geometry (b_m = 1.1, f_c of Table 7, α = cup angle)", "basic dynamic load rating C_r"),
-        ("life.L10", "ISO 281 (C_r/P)^(10/3) in hours at the relative ring speed, P = X F_r + Y F_a", "basic rating life L_10h"),
-        ("life.L10r", "ISO/TS 16281 from the slice (lamina) loads, a1 = a_ISO = 1, in hours", "basic reference rating life L_10r"),
-        ("frictionTorque, powerLoss", "torque to drive the cone, dissipated power", "frictional moment M, power loss"),
+        (
+            "stiffness[i,j]",
+            "d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), rollers re-equilibrated (tangent)",
+            "bearing stiffness matrix K (5\u{d7}5, e.g. c_rr, c_aa, c_tt)",
+        ),
+        (
+            "rating.C",
+            "ISO 281 C_r from the geometry (b_m = 1.1, f_c of Table 7, α = cup angle)",
+            "basic dynamic load rating C_r",
+        ),
+        (
+            "life.L10",
+            "ISO 281 (C_r/P)^(10/3) in hours at the relative ring speed, P = X F_r + Y F_a",
+            "basic rating life L_10h",
+        ),
+        (
+            "life.L10r",
+            "ISO/TS 16281 from the slice (lamina) loads, a1 = a_ISO = 1, in hours",
+            "basic reference rating life L_10r",
+        ),
+        (
+            "frictionTorque, powerLoss",
+            "torque to drive the cone, dissipated power",
+            "frictional moment M, power loss",
+        ),
     ] {
-        let _ = writeln!(h, "<tr><td><code>{ours}</code></td><td>{}</td><td>{}</td></tr>", esc(meaning), esc(usual));
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{ours}</code></td><td>{}</td><td>{}</td></tr>",
+            esc(meaning),
+            esc(usual)
+        );
     }
     let _ = writeln!(h, "</table>");
     let _ = writeln!(

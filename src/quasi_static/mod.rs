@@ -1588,6 +1588,11 @@ impl QuasiStatic {
         }
     }
 
+    /// The oil's dynamic viscosity at ambient pressure this model was built with (Pa s).
+    pub fn oil_viscosity(&self) -> f64 {
+        self.params.eta0
+    }
+
     pub fn lubrication(&self) -> Lubrication {
         self.params.lubrication
     }
