@@ -170,7 +170,9 @@ def _typed(v, value, where: str):
             raise SweepError(where, f"`{v.name}` is an {v.type}: must be an integral number, got {json.dumps(value)}")
         x = int(x)
     if v.min is not None and x < v.min or v.max is not None and x > v.max:
-        raise SweepError(where, f"`{v.name}` = {json.dumps(value)} is outside its range [{v.min:g}, {v.max:g}]")
+        lo = "-inf" if v.min is None else f"{v.min:g}"
+        hi = "inf" if v.max is None else f"{v.max:g}"
+        raise SweepError(where, f"`{v.name}` = {json.dumps(value)} is outside its range [{lo}, {hi}]")
     return x
 
 
