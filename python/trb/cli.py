@@ -96,6 +96,8 @@ def _main(args) -> int:
                   progress=not args.no_progress, timeout=args.timeout)
     counts = ", ".join(f"{n} {s}" for s, n in sorted(outcome.statuses.items()))
     print(f"wrote {args.out}: {outcome.table.num_rows} cases ({counts}); {outcome.ran} run, {outcome.reused} reused")
+    if outcome.ran:
+        print(f"  ran {outcome.ran} cases in {outcome.elapsed:.2f} s ({outcome.ran / outcome.elapsed:.1f} cases/s)")
     if outcome.aggregation:
         for key, e in outcome.aggregation.items():
             value = "n/a (" + e.get("reason", "") + ")" if e["value"] is None else f"{e['value']:.6g} {e['unit'] or ''}"

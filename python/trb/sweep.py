@@ -17,6 +17,7 @@ import json
 import math
 import os
 import sys
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,6 +36,7 @@ class Outcome:
     table: pa.Table
     reused: int
     ran: int
+    elapsed: float = 0.0  # s from the first submit to the last part written
     statuses: dict = field(default_factory=dict)
     aggregation: dict | None = None
     plots: list[Path] = field(default_factory=list)
@@ -84,9 +86,11 @@ def run(sweep: Sweep, out: Path, trb: Path, scheduler: str | None = None, worker
     log(f"{len(sweep.cases)} cases: {reused} already in the results, {len(tasks)} to run")
 
     results = dict(done)
+    elapsed = 0.0
     if tasks:
         with connect(scheduler, workers) as client:
             log(f"Dask scheduler {client.scheduler.address} with {len(client.scheduler_info(n_workers=-1)['workers'])} workers")
+            t0 = time.perf_counter()
             futures = {
                 client.submit(run_case, task, str(trb), timeout, key=f"trb-case-{cid}", retries=TASK_RETRIES, pure=False): cid
                 for cid, task in tasks.items()
@@ -110,7 +114,10 @@ def run(sweep: Sweep, out: Path, trb: Path, scheduler: str | None = None, worker
                     bar.update(len(records))
             finally:
                 bar.close()
-    return finish(sweep, store, results, reused, len(tasks), log)
+            elapsed = time.perf_counter() - t0
+    outcome = finish(sweep, store, results, reused, len(tasks), log)
+    outcome.elapsed = elapsed
+    return outcome
 
 
 def finish(sweep: Sweep, store: Store, results: dict, reused: int, ran: int, log=print) -> Outcome:
