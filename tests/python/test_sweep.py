@@ -384,6 +384,33 @@ def test_spectrum_aggregates_by_miner_and_time_weighted_mean(tmp_path, trb_progr
 
 
 # ---------------------------------------------------------------------------------------
+# Maps
+# ---------------------------------------------------------------------------------------
+
+
+def test_grid_sweep_draws_its_maps(tmp_path, trb_program):
+    sweep = {
+        "scenario": {"parameters": {"fidelity": 0}, "inputs": {"Fx": 30000.0}, "stop_time": 0.001, "step": 0.001},
+        "grid": {"speed": SPEED, "Fy": [0.0, 10000.0, 1.0e6], "mu": [0.1]},
+        "outputs": ["frictionTorque"],
+        "plots": [
+            {"x": "speed", "y": "Fy", "z": "frictionTorque", "file": "torque.svg", "title": "torque map"},
+            {"x": "Fy", "y": "speed", "z": "powerLoss", "file": "power.png"},
+        ],
+    }
+    sweep["outputs"].append("powerLoss")
+    out = tmp_path / "maps" / "r.parquet"
+    proc = sweep_cli(write_json(tmp_path / "s.json", sweep), "--out", out, "--workers", "2")
+    assert "map: " in proc.stdout
+    svg = (tmp_path / "maps" / "torque.svg").read_text()
+    assert svg.lstrip().startswith("<?xml") and "<svg" in svg and "torque map" in svg
+    assert "frictionTorque [N.m]" in svg and "speed [rad/s]" in svg, "axes and colour bar carry the FMU's units"
+    assert (tmp_path / "maps" / "power.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    statuses = [r["status"] for r in pq.read_table(out).to_pylist()]
+    assert statuses.count("refused") == 2 and statuses.count("ok") == 4
+
+
+# ---------------------------------------------------------------------------------------
 # Bad sweep files
 # ---------------------------------------------------------------------------------------
 
@@ -470,3 +497,17 @@ def test_shipped_sweeps_are_valid(trb_program, model):
             sc = s.cases[0].task["scenario"]
             assert sc["stop_time"] - sc.get("start_time", 0.0) <= 0.02, "dynamic example cases stay short"
     assert {"grid", "spectrum"} <= set(modes.values())
+
+
+def test_dry_run_counts_the_cases_and_runs_nothing(tmp_path, trb_program):
+    from trb.cli import main
+
+    import contextlib
+    import io
+
+    buf = io.StringIO()
+    out = tmp_path / "r.parquet"
+    with contextlib.redirect_stdout(buf):
+        code = main([str(REPO / "sweeps" / "qs_torque_map.json"), "--out", str(out), "--dry-run", "--trb", str(trb_program)])
+    assert code == 0 and "dry run: 36 of 36 distinct cases would run" in buf.getvalue()
+    assert not out.exists() and not (tmp_path / "r.parquet.parts").exists()
