@@ -33,6 +33,7 @@ from conftest import REPO, TRB, ensure_built, read_csv, run_cli, write_json
 
 TRB_SWEEP = Path(sys.executable).parent / "trb-sweep"
 SPEED = [209.43951023931953, 366.51914291880917]
+BASE = {"scenario": {"stop_time": 0.001, "step": 0.001}}  # a one-step base scenario
 
 
 # ---------------------------------------------------------------------------------------
@@ -71,16 +72,16 @@ class Counter:
             return []
         out = []
         for line in self.log.read_text().splitlines():
-            kind, case, ppid, pid = line.split()
-            if kind == "start":
-                out.append((case, int(ppid), int(pid)))
+            fields = line.split()
+            if len(fields) == 4 and fields[0] == "start":  # (a line being written is skipped)
+                out.append((fields[1], int(fields[2]), int(fields[3])))
         return out
 
     def running(self) -> list[tuple[str, int, int]]:
         """Runs started and not ended."""
         if not self.log.is_file():
             return []
-        ended = {int(line.split()[3]) for line in self.log.read_text().splitlines() if line.startswith("end")}
+        ended = {int(f[3]) for f in map(str.split, self.log.read_text().splitlines()) if len(f) == 4 and f[0] == "end"}
         return [s for s in self.starts() if s[2] not in ended]
 
     def reset(self):
@@ -257,6 +258,55 @@ def test_two_worker_sweep_equals_single_runs_and_rerun_runs_only_new_cases(tmp_p
     assert counter.starts() == [] and "12 already in the results, 0 to run" in proc.stdout
 
 
+def test_cases_in_error_are_not_final_and_a_rerun_retries_them(tmp_path, trb_program):
+    """A program that crashes (here: a stand-in exiting with 99) gives status `error` and
+    exit code 1; a rerun with a working program runs those cases again."""
+    broken = tmp_path / "trb-broken"
+    broken.write_text(f'#!/bin/sh\n[ "$1" = simulate ] && {{ echo "boom" >&2; exit 99; }}\nexec "{trb_program}" "$@"\n')
+    broken.chmod(0o755)
+    sweep = write_json(tmp_path / "s.json", {**BASE, "cases": [{"Fy": 0.0}, {"Fy": 1000.0}], "outputs": ["frictionTorque"]})
+    out = tmp_path / "r.parquet"
+    proc = sweep_cli(sweep, "--out", out, "--workers", "1", "--trb", broken, check=False)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    rows = pq.read_table(out).to_pylist()
+    assert [r["status"] for r in rows] == ["error", "error"]
+    assert "exit code 99" in rows[0]["message"] and "boom" in rows[0]["message"]
+    counter = Counter(tmp_path, trb_program)
+    proc = sweep_cli(sweep, "--out", out, "--workers", "1", "--trb", counter.path)
+    assert len(counter.starts()) == 2 and "0 already in the results, 2 to run" in proc.stdout
+    assert [r["status"] for r in pq.read_table(out).to_pylist()] == ["ok", "ok"]
+
+
+def test_scenario_file_and_bearing_file_travel_with_the_task(tmp_path, trb_program):
+    """A base scenario given as a file (relative to the sweep file) and a bearing file: the
+    task holds the bearing's text (a worker needs no access to it), and the text is part of
+    the case's identity."""
+    from trb import spec
+    from trb.runner import run_case
+
+    bearing = tmp_path / "b" / "apex.json"
+    bearing.parent.mkdir()
+    bearing.write_text((REPO / "tests" / "fixtures" / "TRB130x230-apex.json").read_text())
+    scen = write_json(tmp_path / "base.json", {"parameters": {"fidelity": 0}, "inputs": {"Fx": 30000.0}, "stop_time": 0.001, "step": 0.001})
+    path = write_json(tmp_path / "s.json", {"bearing": "b/apex.json", "scenario": "base.json", "grid": {"speed": SPEED}, "outputs": ["frictionTorque"]})
+    s = spec.load(path, trb_program)
+    task = s.cases[0].task
+    assert task["scenario"]["bearing"] == "bearing.json" and task["bearing_text"] == bearing.read_text()
+    assert task["scenario"]["inputs"] == {"Fx": 30000.0, "speed": SPEED[0]}
+    r = run_case(task, str(trb_program))
+    assert r["status"] == "ok", r
+    # The same case run alone on the file gives the same bits.
+    alone = json.loads(json.dumps(task["scenario"]))
+    alone["bearing"] = str(bearing)
+    run_cli("simulate", write_json(tmp_path / "alone.json", alone), "--out", tmp_path / "alone.csv", "--quiet")
+    header, data = read_csv(tmp_path / "alone.csv")
+    assert r["values"]["frictionTorque"] == data[-1][header.index("frictionTorque")]
+    # Another bearing text (one more space): another id; the same text: the same id.
+    assert spec.load(path, trb_program).cases[0].id == s.cases[0].id
+    bearing.write_text(bearing.read_text() + " ")
+    assert spec.load(path, trb_program).cases[0].id != s.cases[0].id
+
+
 # ---------------------------------------------------------------------------------------
 # Resume after the client is killed; a killed worker loses nothing
 # ---------------------------------------------------------------------------------------
@@ -413,8 +463,6 @@ def test_grid_sweep_draws_its_maps(tmp_path, trb_program):
 # ---------------------------------------------------------------------------------------
 # Bad sweep files
 # ---------------------------------------------------------------------------------------
-
-BASE = {"scenario": {"stop_time": 0.001, "step": 0.001}}
 
 
 BAD = [
