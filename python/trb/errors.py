@@ -1,7 +1,7 @@
 """The one error a user sees for a bad sweep: it names the offending field.
 
-`trb-sweep` prints `trb-sweep: error: field `grid.Fy`: ...` and exits with code 2 (as
-`trb simulate` does for a bad scenario), never with a traceback.
+`trb-sweep` prints `trb-sweep: error: field `grid.Fy`: ...` (or `option `--workers`: ...`) and
+exits with code 2 (as `trb simulate` does for a bad scenario), never with a traceback.
 """
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ class SweepError(Exception):
     """A sweep file, option or program that cannot be used; `field` names where."""
 
     def __init__(self, field: str, message: str):
-        super().__init__(f"field `{field}`: {message}" if field else message)
+        kind = "option" if field.startswith("--") else "field"
+        super().__init__(f"{kind} `{field}`: {message}" if field else message)
         self.field = field
         self.message = message

@@ -24,6 +24,7 @@ from pathlib import Path
 import pyarrow as pa
 
 from . import aggregate
+from .errors import SweepError
 from .runner import run_case
 from .spec import Sweep
 from .store import Store
@@ -49,7 +50,11 @@ def connect(scheduler: str | None, workers: int | None):
     from distributed import Client, LocalCluster
 
     if scheduler:
-        with Client(scheduler, timeout="20s") as client:
+        try:
+            client = Client(scheduler, timeout="10s")
+        except (OSError, TimeoutError, ValueError) as e:
+            raise SweepError("--scheduler", f"cannot connect to the Dask scheduler at {scheduler}: {e}") from None
+        with client:
             yield client
     else:
         n = workers or os.cpu_count() or 1

@@ -317,7 +317,9 @@ def test_rerun_after_a_killed_sweep_runs_only_the_unfinished_cases(tmp_path, trb
     out = tmp_path / "results.parquet"
     counter = Counter(tmp_path, trb_program)
     cmd = [str(TRB_SWEEP), str(sweep), "--out", str(out), "--workers", "2", "--trb", str(counter.path), "--no-progress"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    (tmp_path / "tmp").mkdir()  # the killed client's last cases leave their directories here
+    env = dict(os.environ, TMPDIR=str(tmp_path / "tmp"))
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         wait_for(lambda: len(part_ids(out)) >= 2, 60, "two finished cases in the parts")
         proc.send_signal(signal.SIGKILL)  # the client and its in-process cluster, nothing flushed
@@ -339,9 +341,14 @@ def test_rerun_after_a_killed_sweep_runs_only_the_unfinished_cases(tmp_path, trb
 
 
 @pytest.fixture
-def process_cluster():
-    """A LocalCluster of 2 worker processes (1 thread each) on localhost, closed after the test."""
+def process_cluster(tmp_path, monkeypatch):
+    """A LocalCluster of 2 worker processes (1 thread each) on localhost, closed after the
+    test. The workers' temporary directories are under tmp_path (a killed worker leaves its
+    case's directory behind)."""
     from distributed import Client, LocalCluster
+
+    (tmp_path / "tmp").mkdir()
+    monkeypatch.setenv("TMPDIR", str(tmp_path / "tmp"))
 
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1")
     client = Client(cluster)
@@ -364,9 +371,9 @@ def test_killed_worker_loses_no_finished_case(tmp_path, trb_program, process_clu
         wait_for(lambda: len(part_ids(out)) >= 2, 60, "two finished cases in the parts")
         # A worker process in the middle of a case.
         busy = wait_for(lambda: [r for r in counter.running() if r[1] in pids.values()], 30, "a worker running a case")
-        victim_case, victim_pid, _ = busy[0]
-        written = {cid: row for cid, row in rows_by_id_parts(out).items()}
+        victim_case, victim_pid, _ = busy[-1]  # the latest start: the most time left
         os.kill(victim_pid, signal.SIGKILL)
+        written = rows_by_id_parts(out)  # all finished before the kill, and maybe a few after
         stdout, stderr = proc.communicate(timeout=90)
     finally:
         if proc.poll() is None:
@@ -515,7 +522,9 @@ def test_bad_sweep_file_from_the_console_script_exits_2_without_traceback(tmp_pa
     proc = sweep_cli(tmp_path / "missing.json", "--out", tmp_path / "r.parquet", "--trb", trb_program, check=False)
     assert proc.returncode == 2 and "cannot read sweep file" in proc.stderr and "Traceback" not in proc.stderr
     proc = sweep_cli(path, "--out", tmp_path / "r.csv", check=False)
-    assert proc.returncode == 2 and "field `--out`" in proc.stderr
+    assert proc.returncode == 2 and "option `--out`: must name a .parquet file" in proc.stderr
+    proc = sweep_cli(path, "--out", tmp_path / "r.parquet", "--workers", "0", check=False)
+    assert proc.returncode == 2 and "option `--workers`: must be at least 1" in proc.stderr
 
 
 # ---------------------------------------------------------------------------------------
