@@ -4,10 +4,11 @@ The scheduler is never hidden: `connect(scheduler, workers)` gives a Client of a
 LocalCluster (`workers` worker threads, one task each; every task runs the `trb` program in
 its own process) or of the cluster at a scheduler address. Each case not already in the
 results (see `trb.store`) is one `client.submit(run_case, task, trb)` with the case's id as
-the key; `as_completed` hands back finished cases in batches, each batch is written as a part
-file at once, and the client then drops its future, so a worker that dies later cannot take a
-finished case with it (the scheduler reruns the tasks the dead worker held unfinished,
-up to `distributed.scheduler.allowed-failures` times; `retries` covers exceptions in a task).
+the key; `as_completed` hands back finished cases, which are written as a part file within
+WRITE_INTERVAL seconds. The client drops each future as soon as it has its result, so a
+worker that dies later cannot take a finished case with it (the scheduler reruns the tasks
+the dead worker held unfinished, up to `distributed.scheduler.allowed-failures` times;
+`retries` covers exceptions raised in a task).
 """
 
 from __future__ import annotations
@@ -30,6 +31,9 @@ from .spec import Sweep
 from .store import Store
 
 TASK_RETRIES = 2
+# Finished cases are written at most this many seconds after they arrive (one part file per
+# write): a quasi-static sweep finishing hundreds of cases a second writes a few parts a second.
+WRITE_INTERVAL = 0.25
 
 
 @dataclass
@@ -101,22 +105,37 @@ def run(sweep: Sweep, out: Path, trb: Path, scheduler: str | None = None, worker
                 for cid, task in tasks.items()
             }
             bar = tqdm(total=len(futures), unit="case", disable=not progress, file=sys.stderr, dynamic_ncols=True)
+            pending: list[dict] = []
+            last_write = time.monotonic()
+
+            def write():
+                nonlocal pending, last_write
+                store.write_part(pending)
+                for r in pending:
+                    results[r["id"]] = store.record_row(r)
+                bar.update(len(pending))
+                pending, last_write = [], time.monotonic()
+
             try:
-                for batch in as_completed(list(futures), with_results=True, raise_errors=False).batches():
-                    records = []
+                ac = as_completed(list(futures), with_results=True, raise_errors=False)
+                while not ac.is_empty():
+                    # Wait for results; with results to write, only until the next write is due.
+                    batch = ac.next_batch(block=not pending)
                     for fut, result in batch:
                         cid = futures.pop(fut)
                         if fut.status == "error":
                             result = _error_record(cid, result[1])
-                        records.append(result)
+                        pending.append(result)
                         fut.release()
                     # Hold no finished future while waiting for the next batch (a held future
                     # whose worker dies would be recomputed).
                     batch = fut = result = None
-                    store.write_part(records)
-                    for r in records:
-                        results[r["id"]] = store.record_row(r)
-                    bar.update(len(records))
+                    if pending and (time.monotonic() - last_write >= WRITE_INTERVAL or ac.is_empty()):
+                        write()
+                    elif pending:
+                        time.sleep(0.01)
+                if pending:
+                    write()
             finally:
                 bar.close()
             elapsed = time.perf_counter() - t0
