@@ -176,6 +176,23 @@ def _typed(v, value, where: str):
     return x
 
 
+def _parse_json(text: str, path: Path, where: str):
+    """JSON text; a duplicate key in an object is an error (json.loads would keep the last)."""
+
+    def pairs(items):
+        obj = {}
+        for k, v in items:
+            if k in obj:
+                raise SweepError(where, f"{path}: key `{k}` appears twice in one object")
+            obj[k] = v
+        return obj
+
+    try:
+        return json.loads(text, object_pairs_hook=pairs)
+    except json.JSONDecodeError as e:
+        raise SweepError(where, f"{path} is not valid JSON: {e}") from None
+
+
 # ---------------------------------------------------------------------------------------
 # The base scenario
 # ---------------------------------------------------------------------------------------
@@ -193,10 +210,7 @@ def _base_scenario(sweep: dict, base_dir: Path) -> tuple[dict, Path, str]:
             text = path.read_text()
         except OSError as e:
             raise SweepError("scenario", f"cannot read scenario file {path}: {e.strerror or e}") from None
-        try:
-            scen = json.loads(text)
-        except json.JSONDecodeError as e:
-            raise SweepError("scenario", f"{path} is not valid JSON: {e}") from None
+        scen = _parse_json(text, path, "scenario")
         where, sdir = "scenario", path.parent
     else:
         scen, where, sdir = s, "scenario", base_dir
@@ -231,10 +245,7 @@ def load(path: Path, trb: Path) -> Sweep:
         text = path.read_text()
     except OSError as e:
         raise SweepError("", f"cannot read sweep file {path}: {e.strerror or e}") from None
-    try:
-        raw = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise SweepError("", f"{path} is not valid JSON: {e}") from None
+    raw = _parse_json(text, path, "")
     return resolve(raw, path.resolve().parent, trb, path=path, text=text)
 
 

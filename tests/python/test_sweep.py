@@ -503,6 +503,18 @@ def test_bad_sweep_file_names_the_field(tmp_path, trb_program, sweep, field, tex
     assert not (tmp_path / "r.parquet").exists()
 
 
+def test_duplicate_keys_and_broken_json_are_refused(tmp_path, trb_program):
+    from trb.cli import main
+
+    path = tmp_path / "dup.json"
+    path.write_text('{"scenario": {"stop_time": 0.001, "step": 0.001}, "grid": {"Fy": [1.0], "Fy": [2.0]}}')
+    code, err = _main_stderr(main, [str(path), "--out", str(tmp_path / "r.parquet"), "--trb", str(trb_program)])
+    assert code == 2 and "key `Fy` appears twice" in err, err
+    path.write_text('{"scenario": {"stop_time": 0.001, "step": 0.001}, "grid": {"Fy": [1.0,]}}')
+    code, err = _main_stderr(main, [str(path), "--out", str(tmp_path / "r.parquet"), "--trb", str(trb_program)])
+    assert code == 2 and "is not valid JSON: " in err and "line 1" in err, err
+
+
 def _main_stderr(main, argv) -> tuple[int, str]:
     import contextlib
     import io
