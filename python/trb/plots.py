@@ -43,7 +43,7 @@ def draw_map(rows: list[dict], plot: dict, units: dict, path: Path) -> Path:
         ax.legend(loc="upper right", fontsize="small")
     ax.set_xlabel(_label(x, units.get(x)))
     ax.set_ylabel(_label(y, units.get(y)))
-    ax.set_title(plot.get("title", f"{z} over {x} and {y}"))
+    ax.set_title(plot.get("title", f"{z} over {x} and {y}"), fontsize="medium")
     fig.tight_layout()
     path = Path(path)
     fig.savefig(path)
