@@ -8,7 +8,8 @@ window, the duty-cycle aggregation and the maps to plot.
 
 `load(path, trb)` checks every key (unknown keys are refused, every error names its field),
 checks variable names, types and ranges against the FMU that the `trb` program packages for
-the bearing, and resolves every case into a task: a dict of plain data holding the complete
+the bearing, has the program check the base scenario's values (one step of the first case),
+and resolves every case into a task: a dict of plain data holding the complete
 scenario that `trb simulate` runs, the bearing file's text if the bearing is a file, the
 outputs and statistics to extract, and `id`, a stable hash of all of these (the identity of
 a case for resuming).
@@ -431,7 +432,36 @@ def resolve(raw: dict, base_dir: Path, trb: Path, path: Path | None = None, text
         }
         task = dict(definition, id=case_id(definition))
         sweep.cases.append(Case(index=index, values=values, task=task, time_share=shares[index] if shares else None))
+    check_scenario(sweep.cases[0], trb)
     return sweep
+
+
+def check_scenario(case: Case, trb: Path):
+    """Let the program check the scenario format (the values of the base scenario, which
+    this module does not read): one communication step of the first case. A scenario the
+    program refuses (exit code 2) is a SweepError with its message; a model failure is left
+    to the sweep, where it is a result."""
+    import subprocess
+    import tempfile
+
+    scen = copy.deepcopy(case.task["scenario"])
+    scen["stop_time"] = scen.get("start_time", 0.0) + scen["step"]
+    with tempfile.TemporaryDirectory(prefix="trb-sweep-check-") as tmp:
+        tmp = Path(tmp)
+        if case.task["bearing_text"] is not None:
+            (tmp / "bearing.json").write_text(case.task["bearing_text"])
+        (tmp / "scenario.json").write_text(json.dumps(scen))
+        try:
+            proc = subprocess.run(
+                [str(trb), "simulate", str(tmp / "scenario.json"), "--out", str(tmp / "out.csv"), "--quiet"],
+                capture_output=True, text=True, timeout=600,
+            )
+        except (OSError, subprocess.TimeoutExpired):
+            return  # the sweep will record it
+    if proc.returncode == 2:
+        msg = " ".join(proc.stderr.strip().splitlines())
+        msg = msg.replace(f"error: scenario {tmp / 'scenario.json'}: ", "")  # the temporary file's name
+        raise SweepError("scenario", f"`trb simulate` refuses the scenario of case 0: {msg}")
 
 
 def case_id(definition: dict) -> str:
