@@ -18,6 +18,7 @@ import json
 import math
 import os
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -62,7 +63,12 @@ def connect(scheduler: str | None, workers: int | None):
             yield client
     else:
         n = workers or os.cpu_count() or 1
-        with LocalCluster(
+        import dask
+
+        # Dask's scratch space (locks, spilling) in a directory of this run, removed after it.
+        with tempfile.TemporaryDirectory(prefix="trb-sweep-dask-") as scratch, dask.config.set(
+            {"temporary-directory": scratch}
+        ), LocalCluster(
             n_workers=n, threads_per_worker=1, processes=False, dashboard_address=None
         ) as cluster, Client(cluster) as client:
             yield client

@@ -350,16 +350,18 @@ def process_cluster(tmp_path, monkeypatch):
     case's directory behind)."""
     from distributed import Client, LocalCluster
 
+    import dask
+
     (tmp_path / "tmp").mkdir()
     monkeypatch.setenv("TMPDIR", str(tmp_path / "tmp"))
-
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1")
-    client = Client(cluster)
-    try:
-        yield cluster, client
-    finally:
-        client.close()
-        cluster.close()
+    with dask.config.set({"temporary-directory": str(tmp_path / "tmp")}):  # Dask's scratch space too
+        cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1")
+        client = Client(cluster)
+        try:
+            yield cluster, client
+        finally:
+            client.close()
+            cluster.close()
 
 
 def test_killed_worker_loses_no_finished_case(tmp_path, trb_program, process_cluster):
