@@ -142,6 +142,10 @@ def run(sweep: Sweep, out: Path, trb: Path, scheduler: str | None = None, worker
                         time.sleep(0.01)
                 if pending:
                     write()
+            except KeyboardInterrupt:
+                if pending:
+                    write()  # the cases already received are kept
+                raise
             finally:
                 bar.close()
             elapsed = time.perf_counter() - t0
