@@ -66,6 +66,7 @@ class Sweep:
     table: VariableTable
     swept: list[str]  # the swept variable names, in file order
     outputs: list[str]  # final values
+    held: list[str]  # the FMU inputs the sweep does not vary: their values (the base scenario's) in each row
     statistics: dict | None  # {"outputs", "functions", "window"}
     aggregation: dict | None  # {"life": column or None, "power": column or None}
     plots: list[dict]
@@ -73,7 +74,7 @@ class Sweep:
 
     @property
     def value_columns(self) -> list[str]:
-        return _value_columns(self.outputs, self.statistics)
+        return _value_columns(self.held + self.outputs, self.statistics)
 
     def unit(self, column: str) -> str | None:
         v = self.table.get(column.split(":")[0])
@@ -410,6 +411,7 @@ def resolve(raw: dict, base_dir: Path, trb: Path, path: Path | None = None, text
         table=table,
         swept=swept,
         outputs=outputs,
+        held=[n for n in table.names("input") if n not in swept],
         statistics=statistics,
         aggregation=aggregation,
         plots=plots,
@@ -427,7 +429,7 @@ def resolve(raw: dict, base_dir: Path, trb: Path, path: Path | None = None, text
             "format": TASK_FORMAT,
             "scenario": s,
             "bearing_text": bearing_text,
-            "final": outputs,
+            "final": sweep.held + outputs,
             "statistics": statistics,
         }
         task = dict(definition, id=case_id(definition))
