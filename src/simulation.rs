@@ -162,6 +162,7 @@ impl Simulation {
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.failure = None;
         self.state.inputs.validate(&self.bearing)?;
+        self.state.inputs.validate_with(&self.state.params)?;
         self.ensure_model()?;
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
             self.solve_if_dirty()?;
@@ -169,7 +170,7 @@ impl Simulation {
         let st = &mut self.state;
         match self.model.as_mut().expect("model built") {
             Model::QuasiStatic(m) => {
-                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(st.inputs.speed) * h);
+                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&st.inputs) * h);
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
@@ -233,6 +234,7 @@ impl Simulation {
 
     fn solve_now(&mut self) -> Result<SolveReport, ModelError> {
         self.state.inputs.validate(&self.bearing)?;
+        self.state.inputs.validate_with(&self.state.params)?;
         self.ensure_model()?;
         let z = self.bearing.roller_count;
         self.backup.copy_from(&self.state.outputs);
@@ -336,6 +338,7 @@ impl Simulation {
             var::FY => i.fy,
             var::FZ => i.fz,
             var::AXIAL_DISPLACEMENT => i.axial_displacement,
+            var::CUP_SPEED => i.cup_speed,
             var::FRICTION_TORQUE => o.friction_torque,
             var::FRICTION_TORQUE_RACEWAY => o.friction_torque_raceway,
             var::FRICTION_TORQUE_FLANGE => o.friction_torque_flange,
@@ -434,6 +437,7 @@ impl Simulation {
             var::FY => &mut i.fy,
             var::FZ => &mut i.fz,
             var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
+            var::CUP_SPEED => &mut i.cup_speed,
             _ => return Err(AccessError::UnknownReference(vr)),
         };
         if slot.to_bits() != value.to_bits() {

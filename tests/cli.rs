@@ -273,7 +273,7 @@ fn simulate_writes_header_and_n_plus_one_rows_reproducibly() {
     let (header, rows) = parse_csv(&text);
     assert_eq!(
         header.join(","),
-        "time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,frictionTorque,cone.x,Qo.max,loadedRollers,roller[17].Qi"
+        "time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,cupSpeed,frictionTorque,cone.x,Qo.max,loadedRollers,roller[17].Qi"
     );
     assert_eq!(rows.len(), 11);
     for row in &rows {
@@ -432,7 +432,7 @@ fn scenario_bearing_paths_are_relative_to_the_scenario_file() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(std::fs::read_to_string(&csv)
         .unwrap()
-        .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,roller[23].Qi\n"));
+        .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,cupSpeed,roller[23].Qi\n"));
 }
 
 #[test]

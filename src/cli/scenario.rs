@@ -566,10 +566,10 @@ mod tests {
         assert_eq!(s.n_steps, 3);
         assert_eq!(s.time(0), 0.0);
         assert_eq!(s.time(3), 0.3);
-        assert_eq!(s.inputs.len(), 7);
+        assert_eq!(s.inputs.len(), 8);
         assert!(s
             .header()
-            .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,frictionTorque"));
+            .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,cupSpeed,frictionTorque"));
     }
 
     #[test]
