@@ -288,10 +288,10 @@ fn simulate_writes_header_and_n_plus_one_rows_reproducibly() {
     assert!((rows[7][5] - 5000.0).abs() < 1e-9);
     assert_eq!(rows[10][2], 5.0e-5);
     // Integers are written as integers.
-    let loaded = text.lines().nth(1).unwrap().split(',').nth(11).unwrap();
+    let loaded = text.lines().nth(1).unwrap().split(',').nth(12).unwrap();
     assert!(!loaded.contains('.'), "loadedRollers written as `{loaded}`");
     // The load changes the outputs.
-    assert!(rows[10][10] > rows[0][10]);
+    assert!(rows[10][11] > rows[0][11]);
 
     let csv2 = s.path("out2.csv");
     let o = trb(&["simulate", p(&scenario), "--out", p(&csv2)]);
@@ -317,8 +317,8 @@ fn simulate_writes_all_outputs_by_default() {
         .filter(|(_, _, v)| v.causality == trb::variables::Causality::Output)
         .map(|(_, n, _)| n)
         .collect();
-    assert_eq!(header.len(), 1 + 7 + outputs.len());
-    assert_eq!(&header[8..], &outputs[..]);
+    assert_eq!(header.len(), 1 + 8 + outputs.len());
+    assert_eq!(&header[9..], &outputs[..]);
     assert_eq!(rows.len(), 3);
 }
 
