@@ -78,12 +78,16 @@ fn check(table: &Table) {
     }
 }
 
-/// `roller[{j}].Nit` -> `ROLLER_NIT`, `cage.pocketClearance` -> `CAGE_POCKET_CLEARANCE`.
+/// `roller[{j}].Nit` -> `ROLLER_NIT`, `cage.pocketClearance` -> `CAGE_POCKET_CLEARANCE`,
+/// `stiffness[1,2]` -> `STIFFNESS_1_2`.
 fn const_name(name: &str) -> String {
     let mut out = String::new();
     let mut prev_lower = false;
     for ch in name.replace("[{j}]", "").chars() {
-        if ch == '.' || ch == '_' {
+        if ch == ']' {
+            continue;
+        }
+        if ch == '.' || ch == '_' || ch == '[' || ch == ',' {
             if !out.ends_with('_') {
                 out.push('_');
             }

@@ -5,7 +5,9 @@
 #   ./scripts/test.sh [extra pytest arguments]
 #
 # 1. the project venv .venv (Python 3.11), (re)created when missing or when
-#    tests/python/requirements.txt changed (its hash is kept in .venv);
+#    tests/python/requirements.txt or python/pyproject.toml changed (their hash is kept in
+#    .venv), with the project's Python package python/ (trb, the trb-sweep console script)
+#    installed editable;
 # 2. cargo test --release (all Rust unit and integration tests);
 # 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu), then its leak check
 #    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh); then the
@@ -22,6 +24,7 @@ ROOT="$(pwd)"
 unset CARGO_TARGET_DIR
 
 REQUIREMENTS="tests/python/requirements.txt"
+PYPROJECT="python/pyproject.toml"
 VENV=".venv"
 STAMP="$VENV/.requirements.sha256"
 
@@ -55,29 +58,36 @@ find_python() {
 }
 
 begin "Python venv ($VENV)"
-want_hash="$( (sha256sum "$REQUIREMENTS" 2>/dev/null || shasum -a 256 "$REQUIREMENTS") | cut -d' ' -f1)"
+want_hash="$( (cat "$REQUIREMENTS" "$PYPROJECT" | (sha256sum 2>/dev/null || shasum -a 256)) | cut -d' ' -f1)"
 have_hash="$(cat "$STAMP" 2>/dev/null || true)"
 if [ ! -x "$VENV/bin/python" ] || [ "$want_hash" != "$have_hash" ]; then
     PYTHON="$(find_python)" || fail "Python 3.11 not found (tried python3.11, python3)"
     echo "creating $VENV with $PYTHON ($("$PYTHON" --version 2>&1)); installing $REQUIREMENTS"
     rm -rf "$VENV"
     if "$PYTHON" -m venv "$VENV"; then
-        "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQUIREMENTS"
+        PIP=("$VENV/bin/python" -m pip)
+        "${PIP[@]}" install --quiet --disable-pip-version-check -r "$REQUIREMENTS"
     else
         # No ensurepip (e.g. Debian without python3.11-venv): a venv without pip, filled by
         # the interpreter's own pip.
         echo "python -m venv failed; retrying without pip in the venv"
         rm -rf "$VENV"
         "$PYTHON" -m venv --without-pip "$VENV" || fail "cannot create $VENV"
-        "$PYTHON" -m pip --python "$VENV/bin/python" install --quiet --disable-pip-version-check -r "$REQUIREMENTS" ||
+        PIP=("$PYTHON" -m pip --python "$VENV/bin/python")
+        "${PIP[@]}" install --quiet --disable-pip-version-check -r "$REQUIREMENTS" ||
             fail "cannot install $REQUIREMENTS into $VENV"
     fi
+    # The project's package, editable (its code is read from python/trb; setuptools is pinned
+    # in the requirements, so no build environment is downloaded).
+    "${PIP[@]}" install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e ./python ||
+        fail "cannot install python/ (the trb package) into $VENV"
     echo "$want_hash" >"$STAMP"
 else
-    echo "$VENV is up to date with $REQUIREMENTS"
+    echo "$VENV is up to date with $REQUIREMENTS and $PYPROJECT"
 fi
-"$VENV/bin/python" -c 'import fmpy, pytest, numpy, libcosimpy, fmu_manipulation_toolbox' ||
+"$VENV/bin/python" -c 'import fmpy, pytest, numpy, libcosimpy, fmu_manipulation_toolbox, dask, distributed, pyarrow, trb.sweep' ||
     fail "$VENV lacks a required package; remove $VENV and rerun"
+[ -x "$VENV/bin/trb-sweep" ] || fail "$VENV/bin/trb-sweep is missing; remove $VENV and rerun"
 end "Python venv"
 
 # --- 2. Rust tests ----------------------------------------------------------------------------

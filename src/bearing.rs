@@ -183,6 +183,18 @@ pub struct LubricantFile {
     #[serde(rename = "alpha_per_Pa")]
     pub alpha_per_pa: f64,
     pub roughness_um: f64,
+    /// The oil's grade: kinematic viscosity at 40 and 100 degC (mm2/s) and density at 15 degC
+    /// (kg/m3); when absent an ISO VG 68 mineral oil (68 and 8.6 mm2/s, VI 100, 870 kg/m3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu40_mm2_s: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu100_mm2_s: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density_kg_m3: Option<f64>,
+    /// Bulk oil temperature (degC) at which `eta0_Pa_s` holds; when absent, the temperature at
+    /// which the grade's viscosity is eta0.
+    #[serde(default, skip_serializing_if = "Option::is_none", rename = "temperature_C")]
+    pub temperature_c: Option<f64>,
     /// Traction data of the oil (docs/model.md, "Oil traction data"); defaults when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traction: Option<OilTractionFile>,
@@ -346,6 +358,11 @@ pub struct Bearing {
     pub land_radius: f64,
     pub cage_mass: f64,
     pub eta0: f64,
+    /// The oil's grade (m2/s, m2/s, kg/m3) and the bulk temperature (K) at which eta0 holds.
+    pub oil_nu40: f64,
+    pub oil_nu100: f64,
+    pub oil_density: f64,
+    pub oil_temperature: f64,
     pub alpha: f64,
     pub roughness: f64,
     pub oil_traction: OilTraction,
@@ -477,6 +494,11 @@ fn material(field: &str, m: &MaterialFile) -> Result<Material, BearingError> {
 }
 
 const MM: f64 = 1e-3;
+/// The bulk oil temperatures the viscosity-temperature law is used over (degC): Walther's
+/// equation holds for mineral and ester oils from their pour point to about 150 degC; the
+/// range admits -40..200 degC and refuses beyond.
+pub const OIL_T_MIN_C: f64 = -40.0;
+pub const OIL_T_MAX_C: f64 = 200.0;
 const UM: f64 = 1e-6;
 
 impl BearingFile {
@@ -716,6 +738,22 @@ impl BearingFile {
         let cage_mass = positive("cage.mass_kg", c.mass_kg)?;
         let l = &self.lubricant;
         let eta0 = in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0)?;
+        let nu40 = in_range("lubricant.nu40_mm2_s", l.nu40_mm2_s.unwrap_or(68.0), 0.1, 1e5)? * 1e-6;
+        let nu100 = in_range("lubricant.nu100_mm2_s", l.nu100_mm2_s.unwrap_or(8.6), 0.1, 1e5)? * 1e-6;
+        if nu100 >= nu40 {
+            return Err(err(
+                "lubricant.nu100_mm2_s",
+                "must be below nu40_mm2_s (viscosity falls with temperature)",
+            ));
+        }
+        let oil_density = in_range("lubricant.density_kg_m3", l.density_kg_m3.unwrap_or(870.0), 500.0, 2000.0)?;
+        let grade = crate::tribology::OilGrade::new(nu40, nu100, oil_density);
+        let oil_temperature = match l.temperature_c {
+            Some(c) => in_range("lubricant.temperature_C", c, OIL_T_MIN_C, OIL_T_MAX_C)? + 273.15,
+            // where the grade has eta0 (clamped to the law's range: eta0 holds at the reference
+            // temperature whatever it is, the grade then only shapes the dependence)
+            None => grade.temperature_for(eta0).clamp(OIL_T_MIN_C + 273.15, OIL_T_MAX_C + 273.15),
+        };
         let alpha = in_range("lubricant.alpha_per_Pa", l.alpha_per_pa, 0.0, 1e-7)?;
         let roughness = in_range("lubricant.roughness_um", l.roughness_um, 0.0, 100.0)? * UM;
         let oil_traction = {
@@ -833,6 +871,10 @@ impl BearingFile {
             land_radius,
             cage_mass,
             eta0,
+            oil_nu40: nu40,
+            oil_nu100: nu100,
+            oil_density,
+            oil_temperature,
             alpha,
             roughness,
             oil_traction,

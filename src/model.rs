@@ -31,12 +31,24 @@ pub enum Preload {
     Displacement = 1,
 }
 
+/// Which quantities of the cone's translation are inputs (parameter `causality`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LoadCausality {
+    /// Forces `Fx`, `Fy`, `Fz` in (or the axial displacement with `preload` = 1), cone
+    /// displacements out.
+    Force = 0,
+    /// Cone displacements relative to the cup `displacement.x/y/z` in, reactions out.
+    Displacement = 1,
+}
+
 /// Everything the user may set before initialization (FMU parameters).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Parameters {
     pub fidelity: Fidelity,
     pub lubrication: Lubrication,
     pub preload: Preload,
+    /// Forces or displacements in (the tilts are always inputs).
+    pub causality: LoadCausality,
     pub slices: usize,
     pub tolerance: f64,
     pub mu: f64,
@@ -67,6 +79,11 @@ pub struct Parameters {
     pub oil_conductivity: f64,
     /// Composite roughness of roller end and rib (m).
     pub flange_roughness: f64,
+    /// The oil's grade: kinematic viscosity at 40 and 100 degC (m2/s), density at 15 degC
+    /// (kg/m3): the viscosity's dependence on `oilTemperature` (`tribology::OilGrade`).
+    pub oil_nu40: f64,
+    pub oil_nu100: f64,
+    pub oil_density: f64,
     /// Diameter deviation of each roller (m), one per roller.
     pub roller_dd: Vec<f64>,
     /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4), 1 = Gill + Milne-Hamming
@@ -86,6 +103,29 @@ pub struct Parameters {
 }
 
 impl Parameters {
+    /// The oil's viscosity against its bulk temperature.
+    pub fn oil_grade(&self) -> crate::tribology::OilGrade {
+        crate::tribology::OilGrade::new(self.oil_nu40, self.oil_nu100, self.oil_density)
+    }
+
+    /// The parameters with `eta0` the oil's viscosity at bulk temperature `t` (K): `eta0`
+    /// scaled by the grade's viscosity ratio between `t` and the bearing's reference
+    /// temperature `t_ref` (the start value of `oilTemperature`, where `eta0` holds), or, with
+    /// `eta0` = 0, the grade's own viscosity at `t`. The contact laws take these.
+    pub fn at_oil_temperature(&self, t: f64, t_ref: f64) -> Parameters {
+        let grade = self.oil_grade();
+        let eta = if self.eta0 > 0.0 {
+            if t == t_ref {
+                self.eta0
+            } else {
+                self.eta0 * grade.dynamic(t) / grade.dynamic(t_ref)
+            }
+        } else {
+            grade.dynamic(t)
+        };
+        Parameters { eta0: eta, ..self.clone() }
+    }
+
     /// The oil's traction data as the traction laws take them.
     pub fn rheology(&self) -> crate::tribology::Rheology {
         crate::tribology::Rheology::new(
@@ -123,6 +163,7 @@ impl Parameters {
             } else {
                 Preload::Force
             },
+            causality: LoadCausality::Force,
             slices: b.slices,
             tolerance: b.tolerance,
             mu: b.mu,
@@ -148,6 +189,9 @@ impl Parameters {
             oil_beta: b.oil_traction.beta,
             oil_conductivity: b.oil_traction.conductivity,
             flange_roughness: b.flange_roughness,
+            oil_nu40: b.oil_nu40,
+            oil_nu100: b.oil_nu100,
+            oil_density: b.oil_density,
             roller_dd: vec![0.0; b.roller_count],
             integrator: 0,
             cage_dynamic: true,
@@ -188,8 +232,28 @@ impl Parameters {
                 format!("must be in [0, {:.3e}] m, got {}", 0.5 * d, self.pocket_clearance),
             );
         }
-        if !(self.eta0.is_finite() && self.eta0 > 0.0 && self.eta0 <= 100.0) {
-            return bad("oil.eta0", format!("must be in (0, 100] Pa s, got {}", self.eta0));
+        if !(self.eta0.is_finite() && self.eta0 >= 0.0 && self.eta0 <= 100.0) {
+            return bad(
+                "oil.eta0",
+                format!("must be in [0, 100] Pa s (0: the grade's own viscosity), got {}", self.eta0),
+            );
+        }
+        for (name, v) in [("oil.nu40", self.oil_nu40), ("oil.nu100", self.oil_nu100)] {
+            if !(v.is_finite() && (1e-7..=0.1).contains(&v)) {
+                return bad(name, format!("must be in [1e-7, 0.1] m2/s (0.1 to 1e5 mm2/s), got {v}"));
+            }
+        }
+        if self.oil_nu100 >= self.oil_nu40 {
+            return bad(
+                "oil.nu100",
+                format!(
+                    "must be below oil.nu40 ({}): viscosity falls with temperature, got {}",
+                    self.oil_nu40, self.oil_nu100
+                ),
+            );
+        }
+        if !(self.oil_density.is_finite() && (500.0..=2000.0).contains(&self.oil_density)) {
+            return bad("oil.density", format!("must be in [500, 2000] kg/m3, got {}", self.oil_density));
         }
         // The EHL rolling resistance grows as alpha^-0.342 towards 0 (and is 0 at 0): values
         // between 0 and 1e-10 1/Pa are no oil and overflow it.
@@ -304,6 +368,10 @@ pub struct Inputs {
     /// Cup (outer ring) angular speed (rad/s), same sense as `speed`; 0: standing cup.
     #[serde(default)]
     pub cup_speed: f64,
+    /// Cone displacement relative to the cup (x, y, z; m) in displacement causality.
+    pub displacement: [f64; 3],
+    /// Bulk oil temperature (K).
+    pub oil_temperature: f64,
 }
 
 impl Inputs {
@@ -318,6 +386,8 @@ impl Inputs {
             fz: b.fz,
             axial_displacement: b.axial_displacement,
             cup_speed: 0.0,
+            displacement: [b.axial_displacement, 0.0, 0.0],
+            oil_temperature: b.oil_temperature,
         }
     }
 
@@ -356,6 +426,10 @@ impl Inputs {
             ("Fz", self.fz),
             ("axialDisplacement", self.axial_displacement),
             ("cupSpeed", self.cup_speed),
+            ("displacement.x", self.displacement[0]),
+            ("displacement.y", self.displacement[1]),
+            ("displacement.z", self.displacement[2]),
+            ("oilTemperature", self.oil_temperature),
         ];
         for (name, v) in named {
             if !v.is_finite() {
@@ -401,16 +475,35 @@ impl Inputs {
                 });
             }
         }
-        // Displacement preload: more than 5 % of the roller diameter is not a bearing any more.
-        let max_disp = 0.05 * b.roller_mean_diameter;
-        if self.axial_displacement.abs() > max_disp {
+        let (lo, hi) = (crate::bearing::OIL_T_MIN_C + 273.15, crate::bearing::OIL_T_MAX_C + 273.15);
+        if !(lo..=hi).contains(&self.oil_temperature) {
             return Err(ModelError::InvalidInput {
-                name: "axialDisplacement",
+                name: "oilTemperature",
                 message: format!(
-                    "{:.3e} m exceeds the model's range of +-{:.3e} m",
-                    self.axial_displacement, max_disp
+                    "{} K ({:.1} degC) is outside the viscosity-temperature law's range [{lo}, {hi}] K ({} to {} degC)",
+                    self.oil_temperature,
+                    self.oil_temperature - 273.15,
+                    crate::bearing::OIL_T_MIN_C,
+                    crate::bearing::OIL_T_MAX_C
                 ),
             });
+        }
+        // Displacement preload: more than 5 % of the roller diameter is not a bearing any more.
+        let max_disp = 0.05 * b.roller_mean_diameter;
+        for (name, v) in [
+            ("axialDisplacement", self.axial_displacement),
+            ("displacement.x", self.displacement[0]),
+            ("displacement.y", self.displacement[1]),
+            ("displacement.z", self.displacement[2]),
+        ] {
+            if v.abs() > max_disp {
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!(
+                        "{v:.3e} m exceeds the model's range of +-{max_disp:.3e} m (5 % of the roller diameter: the contact laws and the small-displacement kinematics end well before)"
+                    ),
+                });
+            }
         }
         Ok(())
     }
@@ -445,6 +538,10 @@ pub struct Outputs {
     /// ISO 281 basic rating life and ISO/TS 16281 basic reference rating life (h).
     pub life_l10: f64,
     pub life_l10r: f64,
+    /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
+    pub stiffness: [f64; 25],
+    /// The oil's dynamic viscosity at the current oil temperature (Pa s).
+    pub oil_viscosity: f64,
     pub tilt_max: f64,
     pub tilt_mean: f64,
     pub skew_max: f64,
@@ -502,6 +599,8 @@ impl Outputs {
             rating_c,
             life_l10,
             life_l10r,
+            stiffness,
+            oil_viscosity,
             tilt_max,
             tilt_mean,
             skew_max,
@@ -551,6 +650,8 @@ impl Outputs {
         self.rating_c.clone_from(rating_c);
         self.life_l10.clone_from(life_l10);
         self.life_l10r.clone_from(life_l10r);
+        self.stiffness.clone_from(stiffness);
+        self.oil_viscosity.clone_from(oil_viscosity);
         self.tilt_max.clone_from(tilt_max);
         self.tilt_mean.clone_from(tilt_mean);
         self.skew_max.clone_from(skew_max);
@@ -640,6 +741,7 @@ impl Outputs {
             self.rating_c,
             self.life_l10,
             self.life_l10r,
+            self.oil_viscosity,
             self.tilt_max,
             self.tilt_mean,
             self.skew_max,
@@ -651,6 +753,7 @@ impl Outputs {
             self.solver_residual,
         ];
         scalars.iter().all(|v| v.is_finite())
+            && self.stiffness.iter().all(|v| v.is_finite())
             && [
                 &self.tilt,
                 &self.skew,

@@ -11,8 +11,8 @@
 
 use crate::bearing::Bearing;
 use crate::dynamic::{Dynamic, DynamicState};
-use crate::model::{Fidelity, Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
-use crate::quasi_static::QuasiStatic;
+use crate::model::{Fidelity, Inputs, LoadCausality, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use crate::quasi_static::{Linearisation, QuasiStatic};
 use crate::tribology::{Piezoviscosity, TractionLaw};
 use crate::variables::{self as var, Causality};
 use bincode::Options as _;
@@ -50,11 +50,17 @@ impl std::error::Error for AccessError {}
 /// The physics of the chosen fidelity.
 #[derive(Debug, Clone)]
 enum Model {
-    QuasiStatic(Box<QuasiStatic>),
-    /// The dynamic model keeps its quasi-static sibling to start from its solution.
+    /// With the skew model, the in-plane linearisation gives the stiffness.
+    QuasiStatic {
+        qs: Box<QuasiStatic>,
+        linear: Option<Box<Linearisation>>,
+    },
+    /// The dynamic model keeps its quasi-static sibling to start from its solution, and the
+    /// quasi-static linearisation about its current state for the stiffness.
     Dynamic {
         qs: Box<QuasiStatic>,
         dynamic: Box<Dynamic>,
+        linear: Box<Linearisation>,
     },
 }
 
@@ -81,11 +87,22 @@ pub struct Simulation {
     bearing: Bearing,
     state: State,
     model: Option<Model>,
+    /// The oil temperature the model's viscosity was set for.
+    model_oil_temperature: f64,
     /// The solve for the current inputs and parameters failed with this error: reading
     /// outputs again returns it instead of solving again (cleared by any change).
     failure: Option<ModelError>,
     /// The outputs before the current solve, restored if the solve produced non-finite values.
     backup: Outputs,
+}
+
+/// The stiffness outputs from the quasi-static linearisation about the cone position in `out`
+/// (the dynamic model's state, the skew model's solution). Where the in-plane model finds no
+/// equilibrium there (a state far outside the quasi-static one), the last stiffness is kept.
+fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: &mut Outputs) {
+    if let Ok(k) = linear.stiffness(inputs, [out.cone_x, out.cone_y, out.cone_z], cage_angle) {
+        out.stiffness = k;
+    }
 }
 
 /// Magic and version of the serialized state format.
@@ -116,6 +133,7 @@ impl Simulation {
                 dynamic: None,
             },
             model: None,
+            model_oil_temperature: f64::NAN,
             failure: None,
             backup: Outputs::new(z),
         }
@@ -169,7 +187,7 @@ impl Simulation {
         }
         let st = &mut self.state;
         match self.model.as_mut().expect("model built") {
-            Model::QuasiStatic(m) => {
+            Model::QuasiStatic { qs: m, .. } => {
                 st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&st.inputs) * h);
             }
             Model::Dynamic { dynamic, .. } => {
@@ -203,17 +221,33 @@ impl Simulation {
         &self.state.outputs
     }
 
+    /// Build the model for the parameters, with the oil's viscosity at the current oil
+    /// temperature; a new oil temperature rebuilds it (the state, warm start and dynamic state,
+    /// carries on).
     fn ensure_model(&mut self) -> Result<(), ModelError> {
+        let oil_t = self.state.inputs.oil_temperature;
+        if self.model.is_some() && self.model_oil_temperature.to_bits() != oil_t.to_bits() {
+            self.model = None;
+        }
         if self.model.is_none() {
             self.state.params.validate(&self.bearing)?;
-            let qs = Box::new(QuasiStatic::new(&self.bearing, &self.state.params)?);
-            self.model = Some(match self.state.params.fidelity {
-                Fidelity::QuasiStatic => Model::QuasiStatic(qs),
+            let p = self.state.params.at_oil_temperature(oil_t, self.bearing.oil_temperature);
+            let qs = Box::new(QuasiStatic::new(&self.bearing, &p)?);
+            self.model = Some(match p.fidelity {
+                Fidelity::QuasiStatic => Model::QuasiStatic {
+                    qs,
+                    linear: match p.skew_model {
+                        true => Some(Box::new(Linearisation::new(&self.bearing, &p)?)),
+                        false => None,
+                    },
+                },
                 Fidelity::Dynamic => Model::Dynamic {
                     qs,
-                    dynamic: Box::new(Dynamic::new(&self.bearing, &self.state.params)?),
+                    dynamic: Box::new(Dynamic::new(&self.bearing, &p)?),
+                    linear: Box::new(Linearisation::new(&self.bearing, &p)?),
                 },
             });
+            self.model_oil_temperature = oil_t;
         }
         Ok(())
     }
@@ -240,14 +274,17 @@ impl Simulation {
         self.backup.copy_from(&self.state.outputs);
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
-            Model::QuasiStatic(m) => {
-                let report = m.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
+            Model::QuasiStatic { qs, linear } => {
+                let report = qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
                 for j in 0..z {
                     st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
                 }
+                if let Some(linear) = linear {
+                    linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
+                }
                 report
             }
-            Model::Dynamic { qs, dynamic } => {
+            Model::Dynamic { qs, dynamic, linear } => {
                 let mut report = st.report;
                 if st.dynamic.is_none() {
                     // Start from the quasi-static solution (seated rollers, epicyclic speeds).
@@ -255,8 +292,12 @@ impl Simulation {
                     st.dynamic = Some(dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time));
                 }
                 dynamic.write_outputs(st.dynamic.as_ref().expect("dynamic state"), &st.inputs, &mut st.outputs);
+                linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
                 report
             }
+        };
+        st.outputs.oil_viscosity = match self.model.as_ref().expect("model built") {
+            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs.oil_viscosity(),
         };
         if !st.outputs.all_finite() {
             // Nothing that is not finite ever leaves the element: keep the last valid outputs.
@@ -327,6 +368,9 @@ impl Simulation {
             var::OIL_BETA => p.oil_beta,
             var::OIL_CONDUCTIVITY => p.oil_conductivity,
             var::FLANGE_ROUGHNESS => p.flange_roughness,
+            var::OIL_NU40 => p.oil_nu40,
+            var::OIL_NU100 => p.oil_nu100,
+            var::OIL_DENSITY => p.oil_density,
             var::CONTACT_DAMPING => p.contact_damping,
             var::CONE_MASS => p.cone_mass,
             var::MAX_STEP => p.max_step,
@@ -339,6 +383,10 @@ impl Simulation {
             var::FZ => i.fz,
             var::AXIAL_DISPLACEMENT => i.axial_displacement,
             var::CUP_SPEED => i.cup_speed,
+            var::DISPLACEMENT_X => i.displacement[0],
+            var::DISPLACEMENT_Y => i.displacement[1],
+            var::DISPLACEMENT_Z => i.displacement[2],
+            var::OIL_TEMPERATURE => i.oil_temperature,
             var::FRICTION_TORQUE => o.friction_torque,
             var::FRICTION_TORQUE_RACEWAY => o.friction_torque_raceway,
             var::FRICTION_TORQUE_FLANGE => o.friction_torque_flange,
@@ -359,6 +407,8 @@ impl Simulation {
             var::RATING_C => o.rating_c,
             var::LIFE_L10 => o.life_l10,
             var::LIFE_L10R => o.life_l10r,
+            var::OIL_VISCOSITY => o.oil_viscosity,
+            v @ var::STIFFNESS_1_1..=var::STIFFNESS_5_5 => o.stiffness[(v - var::STIFFNESS_1_1) as usize],
             var::TILT_MAX => o.tilt_max,
             var::TILT_MEAN => o.tilt_mean,
             var::SKEW_MAX => o.skew_max,
@@ -426,6 +476,9 @@ impl Simulation {
             var::OIL_BETA => &mut p.oil_beta,
             var::OIL_CONDUCTIVITY => &mut p.oil_conductivity,
             var::FLANGE_ROUGHNESS => &mut p.flange_roughness,
+            var::OIL_NU40 => &mut p.oil_nu40,
+            var::OIL_NU100 => &mut p.oil_nu100,
+            var::OIL_DENSITY => &mut p.oil_density,
             var::CONTACT_DAMPING => &mut p.contact_damping,
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
@@ -438,6 +491,10 @@ impl Simulation {
             var::FZ => &mut i.fz,
             var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
             var::CUP_SPEED => &mut i.cup_speed,
+            var::DISPLACEMENT_X => &mut i.displacement[0],
+            var::DISPLACEMENT_Y => &mut i.displacement[1],
+            var::DISPLACEMENT_Z => &mut i.displacement[2],
+            var::OIL_TEMPERATURE => &mut i.oil_temperature,
             _ => return Err(AccessError::UnknownReference(vr)),
         };
         if slot.to_bits() != value.to_bits() {
@@ -475,6 +532,7 @@ impl Simulation {
             var::FIDELITY => p.fidelity as i32,
             var::LUBRICATION => p.lubrication as i32,
             var::PRELOAD => p.preload as i32,
+            var::CAUSALITY => p.causality as i32,
             var::SLICES => p.slices as i32,
             var::OUTER_LOBES => p.outer_lobes as i32,
             var::INTEGRATOR => p.integrator as i32,
@@ -510,6 +568,13 @@ impl Simulation {
             var::FIDELITY => p.fidelity = if value == 0 { Fidelity::QuasiStatic } else { Fidelity::Dynamic },
             var::LUBRICATION => p.lubrication = if value == 0 { Lubrication::Ehl } else { Lubrication::Dry },
             var::PRELOAD => p.preload = if value == 0 { Preload::Force } else { Preload::Displacement },
+            var::CAUSALITY => {
+                p.causality = if value == 0 {
+                    LoadCausality::Force
+                } else {
+                    LoadCausality::Displacement
+                }
+            }
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,

@@ -250,7 +250,17 @@ const SMALL: &str = r#"{
 
 fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_string).collect::<Vec<_>>();
+    let head = lines.next().unwrap();
+    let header = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(head.as_bytes())
+        .records()
+        .next()
+        .unwrap()
+        .unwrap()
+        .iter()
+        .map(str::to_string)
+        .collect::<Vec<_>>();
     let rows = lines
         .map(|l| {
             l.split(',')
@@ -259,6 +269,15 @@ fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
         })
         .collect();
     (header, rows)
+}
+
+/// The FMU's inputs in modelDescription order (the CSV's columns after `time`).
+fn input_names() -> Vec<String> {
+    trb::variables::expanded(1)
+        .into_iter()
+        .filter(|(_, _, v)| v.causality == trb::variables::Causality::Input)
+        .map(|(_, n, _)| n)
+        .collect()
 }
 
 #[test]
@@ -273,7 +292,10 @@ fn simulate_writes_header_and_n_plus_one_rows_reproducibly() {
     let (header, rows) = parse_csv(&text);
     assert_eq!(
         header.join(","),
-        "time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,cupSpeed,frictionTorque,cone.x,Qo.max,loadedRollers,roller[17].Qi"
+        format!(
+            "time,{},frictionTorque,cone.x,Qo.max,loadedRollers,roller[17].Qi",
+            input_names().join(",")
+        )
     );
     assert_eq!(rows.len(), 11);
     for row in &rows {
@@ -288,10 +310,12 @@ fn simulate_writes_header_and_n_plus_one_rows_reproducibly() {
     assert!((rows[7][5] - 5000.0).abs() < 1e-9);
     assert_eq!(rows[10][2], 5.0e-5);
     // Integers are written as integers.
-    let loaded = text.lines().nth(1).unwrap().split(',').nth(12).unwrap();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let loaded = text.lines().nth(1).unwrap().split(',').nth(col("loadedRollers")).unwrap();
     assert!(!loaded.contains('.'), "loadedRollers written as `{loaded}`");
     // The load changes the outputs.
-    assert!(rows[10][11] > rows[0][11]);
+    let qo = col("Qo.max");
+    assert!(rows[10][qo] > rows[0][qo]);
 
     let csv2 = s.path("out2.csv");
     let o = trb(&["simulate", p(&scenario), "--out", p(&csv2)]);
@@ -317,8 +341,10 @@ fn simulate_writes_all_outputs_by_default() {
         .filter(|(_, _, v)| v.causality == trb::variables::Causality::Output)
         .map(|(_, n, _)| n)
         .collect();
-    assert_eq!(header.len(), 1 + 8 + outputs.len());
-    assert_eq!(&header[9..], &outputs[..]);
+    let inputs = input_names();
+    assert_eq!(header.len(), 1 + inputs.len() + outputs.len());
+    assert_eq!(&header[1..1 + inputs.len()], &inputs[..]);
+    assert_eq!(&header[1 + inputs.len()..], &outputs[..]);
     assert_eq!(rows.len(), 3);
 }
 
@@ -432,7 +458,7 @@ fn scenario_bearing_paths_are_relative_to_the_scenario_file() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(std::fs::read_to_string(&csv)
         .unwrap()
-        .starts_with("time,speed,xi,zeta,Fx,Fy,Fz,axialDisplacement,cupSpeed,roller[23].Qi\n"));
+        .starts_with(&format!("time,{},roller[23].Qi\n", input_names().join(","))));
 }
 
 #[test]

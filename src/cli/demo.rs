@@ -87,17 +87,31 @@ fn run_dynamic(base: &Path, csv: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Header and rows of a simulate CSV (RFC 4180: names such as `stiffness[1,2]` are quoted).
+fn records(text: &str) -> Result<(Vec<String>, Vec<Vec<String>>), String> {
+    let mut reader = csv::ReaderBuilder::new().has_headers(true).from_reader(text.as_bytes());
+    let header = reader
+        .headers()
+        .map_err(|e| format!("CSV header: {e}"))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let rows = reader
+        .records()
+        .map(|r| r.map(|r| r.iter().map(str::to_string).collect()).map_err(|e| format!("CSV: {e}")))
+        .collect::<Result<_, _>>()?;
+    Ok((header, rows))
+}
+
 /// Columns of `text` (a simulate CSV) by name, scaled.
 fn columns(text: &str, wanted: &[(&str, f64)]) -> Result<Vec<Vec<f64>>, String> {
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().ok_or("empty CSV")?.split(',').collect();
+    let (header, rows) = records(text)?;
     let index: Vec<usize> = wanted
         .iter()
         .map(|(name, _)| header.iter().position(|h| h == name).ok_or(format!("CSV has no column `{name}`")))
         .collect::<Result<_, _>>()?;
     let mut out = vec![Vec::new(); wanted.len()];
-    for (r, line) in lines.enumerate() {
-        let cells: Vec<&str> = line.split(',').collect();
+    for (r, cells) in rows.iter().enumerate() {
         for (k, (&i, (name, scale))) in index.iter().zip(wanted).enumerate() {
             let raw = cells.get(i).ok_or(format!("row {r} has no column `{name}`"))?;
             let v: f64 = raw
@@ -172,13 +186,11 @@ const COLUMNS: &[Column] = &[
 
 /// An aligned table of about ten evenly spaced rows of the CSV `text`.
 pub fn table(text: &str, columns: &[Column]) -> Result<String, String> {
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().ok_or("empty CSV")?.split(',').collect();
+    let (header, rows) = records(text)?;
     let index: Vec<usize> = columns
         .iter()
         .map(|(_, name, _, _)| header.iter().position(|h| h == name).ok_or(format!("CSV has no column `{name}`")))
         .collect::<Result<_, _>>()?;
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     if rows.is_empty() {
         return Err("CSV has no rows".into());
     }

@@ -150,6 +150,7 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
         h,
         "<p>Contents: <a href=\"#models\">what it models</a> \u{b7} <a href=\"#limits\">what it does not</a> \u{b7} \
          <a href=\"#fidelity\">fidelity levels</a> \u{b7} <a href=\"#bearing\">the bearing</a> \u{b7} \
+         <a href=\"#drivetrain\">drivetrain block</a> \u{b7} \
          <a href=\"#variables\">variables</a> \u{b7} <a href=\"#fmpy\">use from fmpy</a> \u{b7} \
          <a href=\"#sources\">sources</a></p>"
     );
@@ -188,6 +189,15 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
          traction [W25]; or dry Coulomb friction with one coefficient <code>mu</code> [D19]. Quasi-static \
          friction torque with rolling resistance, sliding friction at a cage slip rate \
          <code>cageSlipRate</code> and flange sliding [L22, rederived from Harris 1966].",
+        "Drivetrain block: with <code>causality</code> = 1 the cone's displacement relative to the cup \
+         (<code>displacement.x/y/z</code>) is the input and the five reactions <code>reaction.Fx/Fy/Fz/My/Mz</code> \
+         the outputs, at both fidelities; the 5\u{d7}5 tangent stiffness <code>stiffness[i,j]</code> \
+         = d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), in both causalities. See \
+         <a href=\"#drivetrain\">drivetrain block</a>.",
+        "Fatigue rating: <code>rating.C</code> (ISO 281 basic dynamic load rating from the geometry), \
+         <code>life.L10</code> (ISO 281 basic rating life at the carried loads' equivalent load and the \
+         speed) and <code>life.L10r</code> (ISO/TS 16281 basic reference rating life from the model's own \
+         slice loads, so tilt, clearance, profile and diameter deviations count), in hours.",
         "Co-simulation semantics: sample and hold. <code>fmi2DoStep(t, h)</code> advances the cage and \
          the roller azimuths over <code>[t, t+h]</code> with the inputs held and solves the element at \
          <code>t+h</code>; outputs are algebraic in the inputs at fidelity 0, so reading an output after \
@@ -206,7 +216,8 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
          deformation; the cup is fixed. The shaft deflection enters only as the imposed cone tilts \
          <code>xi</code>, <code>zeta</code> (the moments needed to hold them are the outputs \
          <code>reaction.My</code>, <code>reaction.Mz</code>), limited to \u{b1}0.5 deg.",
-        "Fatigue life, wear, damage and surface temperature (flash temperature) are not computed.",
+        "Wear, damage and surface temperature (flash temperature) are not computed; the lives are \
+         ISO 281 / ISO/TS 16281 ratings with a1 = a_ISO = 1 (no lubrication or contamination factor).",
         "A cylindrical roller bearing carries no axial load in this model (<code>Fx</code> is ignored).",
         "The element has no continuous states exposed to the master; at fidelity 0 the only memory \
          between steps is the cage angle (roller azimuths) and the solver's warm start.",
@@ -250,6 +261,7 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
     write_bearing(&mut h, bearing, bearing_json);
 
     // ----------------------------------------------------------------------------------
+    write_drivetrain(&mut h);
     let _ = writeln!(h, "<h2 id=\"variables\">Variables</h2>");
     let _ = writeln!(
         h,
@@ -402,6 +414,95 @@ fn write_bearing(h: &mut String, b: &Bearing, json: &str) {
         h,
         "<p>The presets <code>resources/presets/*.json</code> are shipped for reference; this FMU is built \
          for the bearing above (its variable list depends on the roller count).</p>"
+    );
+}
+
+/// Causality, signs, stiffness and life, with the names a user of bearing-analysis tools and
+/// of ISO 281 / ISO/TS 16281 knows.
+fn write_drivetrain(h: &mut String) {
+    let _ = writeln!(h, "<h2 id=\"drivetrain\">Drivetrain block: causality, stiffness, life</h2>");
+    let _ = writeln!(
+        h,
+        "<p>Frame: x is the bearing axis (towards the small roller ends), y and z radial; the origin on \
+         the axis in the plane of the roller centres. A shaft model that owns the journal's motion sets \
+         <code>causality</code> = 1, passes the cone's displacement relative to the cup \
+         (<code>displacement.x/y/z</code>, m) and tilts (<code>xi</code>, <code>zeta</code>, rad) and \
+         applies the opposite of the reactions to its journal. With <code>causality</code> = 0 (default) \
+         the forces go in and <code>cone.x/y/z</code> come out. At fidelity 1 a prescribed cone jumps to \
+         its inputs at every communication point (held over the step); rollers and cage stay dynamic.</p>"
+    );
+    let _ = writeln!(
+        h,
+        "<table><tr><th>this FMU</th><th>meaning and sign</th><th>usual name (ISO 281, ISO/TS 16281, bearing tools)</th></tr>"
+    );
+    for (ours, meaning, usual) in [
+        (
+            "reaction.Fx",
+            "axial load the bearing carries; > 0 pushes the cone into the cup (loads the bearing)",
+            "axial load F_a",
+        ),
+        (
+            "reaction.Fy, reaction.Fz",
+            "radial load components the bearing carries (= Fy, Fz in force causality)",
+            "radial load F_r = |(F_y, F_z)|",
+        ),
+        (
+            "reaction.My, reaction.Mz",
+            "moment the shaft applies to hold the tilts (positive work with xi, zeta)",
+            "tilting moment M",
+        ),
+        (
+            "displacement.x / cone.x",
+            "axial displacement of the cone relative to the cup, > 0 into the bearing",
+            "axial deflection δ_a (inner ring relative to outer)",
+        ),
+        (
+            "displacement.y/z / cone.y/z",
+            "radial displacement of the cone relative to the cup",
+            "radial deflection δ_r",
+        ),
+        ("xi, zeta", "tilts of the cone about y and z", "misalignment / tilt angle"),
+        (
+            "stiffness[i,j]",
+            "d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), rollers re-equilibrated (tangent)",
+            "bearing stiffness matrix K (5\u{d7}5, e.g. c_rr, c_aa, c_tt)",
+        ),
+        (
+            "rating.C",
+            "ISO 281 C_r from the geometry (b_m = 1.1, f_c of Table 7, α = cup angle)",
+            "basic dynamic load rating C_r",
+        ),
+        (
+            "life.L10",
+            "ISO 281 (C_r/P)^(10/3) in hours at the relative ring speed, P = X F_r + Y F_a",
+            "basic rating life L_10h",
+        ),
+        (
+            "life.L10r",
+            "ISO/TS 16281 from the slice (lamina) loads, a1 = a_ISO = 1, in hours",
+            "basic reference rating life L_10r",
+        ),
+        (
+            "frictionTorque, powerLoss",
+            "torque between the rings (to drive the cone when the cup stands), dissipated power = torque x (speed - cupSpeed)",
+            "frictional moment M, power loss",
+        ),
+    ] {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{ours}</code></td><td>{}</td><td>{}</td></tr>",
+            esc(meaning),
+            esc(usual)
+        );
+    }
+    let _ = writeln!(h, "</table>");
+    let _ = writeln!(
+        h,
+        "<p>Tools that put the bearing axis on z map this FMU's x to their z and (y, z) to their (x, y). \
+         The stiffness is analytic at fidelity 0 (static condensation of the Newton Jacobian); at \
+         fidelity 1 and with <code>skewModel</code> it is the quasi-static linearisation about the current \
+         cone position. Lives are capped at 1e12 h when the rings do not turn relative to each other or \
+         carry no load.</p>"
     );
 }
 

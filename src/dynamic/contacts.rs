@@ -29,7 +29,7 @@ use crate::contact::{LineLaw, PointContact};
 use crate::fastmath as fm;
 use crate::geometry::Geometry;
 use crate::journal_film::ShortJournal;
-use crate::model::{Inputs, Lubrication, Parameters, Preload};
+use crate::model::{Inputs, LoadCausality, Lubrication, Parameters, Preload};
 use crate::tribology as tr;
 use nalgebra::Vector3;
 use std::f64::consts::{PI, TAU};
@@ -113,7 +113,11 @@ pub(crate) struct Constants {
     m_cone: f64,
     pitch_radius: f64,
     axial: bool,
-    displacement_preload: bool,
+    /// Cone translations (x, y, z) the inputs prescribe: x in displacement preload, all three
+    /// in displacement causality (the cone follows them; a bearing without axial stiffness
+    /// holds x at 0).
+    pub prescribed: [bool; 3],
+    pub displacement_causality: bool,
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -257,22 +261,37 @@ impl Constants {
             m_cone: p.cone_mass,
             pitch_radius,
             axial: g.axial,
-            displacement_preload: p.preload == Preload::Displacement,
+            prescribed: [
+                !g.axial || p.preload == Preload::Displacement || p.causality == LoadCausality::Displacement,
+                p.causality == LoadCausality::Displacement,
+                p.causality == LoadCausality::Displacement,
+            ],
+            displacement_causality: p.causality == LoadCausality::Displacement,
         }
     }
+}
+
+/// The cone translations the inputs prescribe (`Constants::prescribed`), `None` where the
+/// cone's state is integrated.
+pub(crate) fn prescribed_cone(c: &Constants, inputs: &Inputs) -> [Option<f64>; 3] {
+    let x = if !c.axial {
+        0.0
+    } else if c.displacement_causality {
+        inputs.displacement[0]
+    } else {
+        inputs.axial_displacement
+    };
+    let values = [x, inputs.displacement[1], inputs.displacement[2]];
+    std::array::from_fn(|k| c.prescribed[k].then_some(values[k]))
 }
 
 /// Roller `rec`'s share of the global rows of the right-hand side (cone and cage
 /// accelerations), in the order of the state vector's first `ROLLERS` entries.
 pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) {
     out.iter_mut().for_each(|v| *v = 0.0);
-    out[CONE + 3] = if c.displacement_preload || !c.axial {
-        0.0
-    } else {
-        rec.f_cone[0] / c.m_cone
-    };
-    out[CONE + 4] = rec.f_cone[1] / c.m_cone;
-    out[CONE + 5] = rec.f_cone[2] / c.m_cone;
+    for k in 0..3 {
+        out[CONE + 3 + k] = if c.prescribed[k] { 0.0 } else { rec.f_cone[k] / c.m_cone };
+    }
     if c.cage_dynamic {
         out[CAGE + 3] = rec.f_cage[1] / c.m_cage;
         out[CAGE + 4] = rec.f_cage[2] / c.m_cage;
@@ -655,6 +674,7 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
 /// per-roller `records`; return the totals.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate(
     g: &Geometry,
     p: &Parameters,
@@ -671,17 +691,9 @@ pub(crate) fn evaluate(
     let rot = super::cone_rotation(inputs.xi, inputs.zeta);
     let rot_t = rot.transpose();
     let axis_c: V3 = rot.column(0).into_owned();
-    let cone_x = if c.displacement_preload {
-        inputs.axial_displacement
-    } else {
-        y[CONE]
-    };
-    let origin = V3::new(if c.axial { cone_x } else { 0.0 }, y[CONE + 1], y[CONE + 2]);
-    let cone_vel = V3::new(
-        if c.displacement_preload || !c.axial { 0.0 } else { y[CONE + 3] },
-        y[CONE + 4],
-        y[CONE + 5],
-    );
+    let held = prescribed_cone(c, inputs);
+    let origin = V3::from_fn(|k, _| held[k].unwrap_or(y[CONE + k]));
+    let cone_vel = V3::from_fn(|k, _| if c.prescribed[k] { 0.0 } else { y[CONE + 3 + k] });
     // in the cone's frame: its own velocity, the bearing axis, the axis term of the orbit
     let cone_vel_l = rot_t * cone_vel;
     let x_l = rot_t * V3::x();
@@ -1021,12 +1033,14 @@ pub(crate) fn evaluate(
         }
         let f_ext = V3::new(inputs.fx, inputs.fy, inputs.fz);
         let acc = (f_ext + tot.f_cone) / c.m_cone;
-        dy[CONE + 3] = if c.displacement_preload || !c.axial { 0.0 } else { acc[0] };
-        if c.displacement_preload || !c.axial {
-            dy[CONE] = 0.0;
+        for k in 0..3 {
+            if c.prescribed[k] {
+                dy[CONE + k] = 0.0;
+                dy[CONE + 3 + k] = 0.0;
+            } else {
+                dy[CONE + 3 + k] = acc[k];
+            }
         }
-        dy[CONE + 4] = acc[1];
-        dy[CONE + 5] = acc[2];
         // cage
         if c.cage_dynamic {
             dy[CAGE] = y[CAGE + 3];

@@ -38,7 +38,7 @@ pub mod rosenbrock;
 
 use crate::bearing::Bearing;
 use crate::geometry::Geometry;
-use crate::model::{Inputs, ModelError, Outputs, Parameters, Preload};
+use crate::model::{Inputs, LoadCausality, ModelError, Outputs, Parameters, Preload};
 use crate::quasi_static::QuasiStatic;
 use integrator::{Counters, Dopri5, Failure, StepControl};
 use jacobian::{BlockSystem, NG};
@@ -173,12 +173,13 @@ impl Dynamic {
             1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
             2 => {
                 let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance.max(MIN_TOLERANCE)).collect();
-                let moving_x = g.axial && params.preload == Preload::Force;
+                let force = params.causality == LoadCausality::Force;
+                let moving_x = g.axial && params.preload == Preload::Force && force;
                 let mut active = [true; NG];
                 for (k, v) in active.iter_mut().enumerate() {
                     *v = match k {
                         0 | 3 => moving_x,
-                        1 | 2 | 4 | 5 => true,
+                        1 | 2 | 4 | 5 => force,
                         _ => params.cage_dynamic,
                     };
                 }
@@ -280,10 +281,15 @@ impl Dynamic {
             state.fsal.clear();
             state.fsal_inputs = Some(*inputs);
         }
-        if self.p.preload == Preload::Displacement && state.y[CONE] != inputs.axial_displacement {
-            state.y[CONE] = inputs.axial_displacement;
-            state.y[CONE + 3] = 0.0;
-            state.fsal.clear();
+        // prescribed cone translations jump to their inputs (held over the step)
+        for (k, v) in contacts::prescribed_cone(&self.c, inputs).iter().enumerate() {
+            if let Some(v) = *v {
+                if state.y[CONE + k] != v || state.y[CONE + 3 + k] != 0.0 {
+                    state.y[CONE + k] = v;
+                    state.y[CONE + 3 + k] = 0.0;
+                    state.fsal.clear();
+                }
+            }
         }
         let this = &mut *self;
         let (g, p, c, records, inp) = (&this.g, &this.p, &this.c, &mut this.records, inputs);
@@ -383,13 +389,10 @@ impl Dynamic {
             out.nfs[j] = r.m_flange.dot(&r.skew_axis);
             out.sliding_friction[j] = r.sliding;
         }
-        out.cone_x = if self.p.preload == Preload::Displacement {
-            inputs.axial_displacement
-        } else {
-            y[CONE]
-        };
-        out.cone_y = y[CONE + 1];
-        out.cone_z = y[CONE + 2];
+        let held = contacts::prescribed_cone(&self.c, inputs);
+        out.cone_x = held[0].unwrap_or(y[CONE]);
+        out.cone_y = held[1].unwrap_or(y[CONE + 1]);
+        out.cone_z = held[2].unwrap_or(y[CONE + 2]);
         out.reaction_fx = if g.axial { -totals.f_cone[0] } else { 0.0 };
         out.reaction_my = -totals.m_cone[1];
         out.reaction_mz = -totals.m_cone[2];

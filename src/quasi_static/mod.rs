@@ -20,23 +20,52 @@
 mod friction;
 mod simd;
 mod skew;
+mod stiffness;
 pub mod studies;
 
 use crate::bearing::Bearing;
 use crate::contact::{self, LineLaw};
 use crate::geometry::Geometry;
-use crate::model::{Inputs, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use crate::model::{Inputs, LoadCausality, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use nalgebra::{Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 use std::f64::consts::TAU;
 
 pub use friction::{FrictionModel, SliceWeights};
+pub use stiffness::Linearisation;
 
 /// Inputs kept with a warm start (for the temporal predictor).
-const WARM_INPUTS: usize = 8;
+const WARM_INPUTS: usize = 11;
 
 /// The inputs of a solve as the warm start keeps them.
 fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
-    [i.speed, i.xi, i.zeta, i.fx, i.fy, i.fz, i.axial_displacement, i.cup_speed]
+    let [dx, dy, dz] = i.displacement;
+    [
+        i.speed,
+        i.xi,
+        i.zeta,
+        i.fx,
+        i.fy,
+        i.fz,
+        i.axial_displacement,
+        dx,
+        dy,
+        dz,
+        i.cup_speed,
+    ]
+}
+
+/// Hold the prescribed cone translations in a Newton step on the cone's Schur complement:
+/// their rows and columns become the identity with a zero right-hand side.
+fn hold_prescribed(schur: &mut Matrix3<f64>, rhs: &mut Vector3<f64>, prescribed: &[Option<f64>; 3]) {
+    for (c, v) in prescribed.iter().enumerate() {
+        if v.is_some() {
+            let mut unit = Vector3::zeros();
+            unit[c] = 1.0;
+            schur.set_row(c, &unit.transpose());
+            schur.set_column(c, &unit);
+            rhs[c] = 0.0;
+        }
+    }
 }
 
 /// Bins per roller pitch of the azimuth table predictor (`QuasiStatic::table_predict`).
@@ -242,6 +271,8 @@ pub struct QuasiStatic {
     ls: f64,
     /// cross(P, n) about the bearing origin per cone slice, and for the flange.
     cone_chi: Vec<f64>,
+    /// cone_chi as alpha + beta lever (`stiffness.rs`).
+    cone_chi_fit: (f64, f64),
     flange_chi: f64,
     /// Kinematic cage speed relative to the cup per unit speed of the cone relative to the
     /// cup (epicyclic, with the slip rate).
@@ -253,6 +284,10 @@ pub struct QuasiStatic {
     cup_table: SliceTable,
     /// This solve is axisymmetric: one roller is evaluated and replicated.
     axisymmetric: bool,
+    /// The cone translations (x, y, z) this solve prescribes (`prepare`): all three in
+    /// displacement causality, the axial one in displacement preload or, at 0, for a bearing
+    /// without axial stiffness; `None`: solved for from the force balance.
+    prescribed: [Option<f64>; 3],
     setup: Vec<RollerSetup>,
     evals: Vec<RollerEval>,
     trial: Vec<f64>,
@@ -290,6 +325,7 @@ impl QuasiStatic {
             .as_ref()
             .map(|f| crate::geometry::cross(f.point, f.normal))
             .unwrap_or(0.0);
+        let cone_chi_fit = QuasiStatic::chi_fit(&cone_chi, &geometry.cone.lever);
         let (ri, ro) = geometry.pitch_contact_radii();
         let cage_ratio = (1.0 - params.cage_slip_rate) * ri / (ri + ro);
         // Outer-raceway control: pure rolling on the cup at mid-roller.
@@ -314,6 +350,7 @@ impl QuasiStatic {
             x: Vec::new(),
             local_scratch: Vec::with_capacity(2 * geometry.slices),
             axisymmetric: false,
+            prescribed: [None; 3],
             cone_table,
             cup_table,
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
@@ -321,6 +358,7 @@ impl QuasiStatic {
             geometry,
             params: params.clone(),
             ls,
+            cone_chi_fit,
             cone_chi,
             flange_chi,
             cage_ratio,
@@ -356,10 +394,22 @@ impl QuasiStatic {
         let g = &self.geometry;
         let p = &self.params;
         let z = g.z;
+        self.prescribed = match (p.causality, g.axial, p.preload) {
+            (LoadCausality::Displacement, axial, _) => {
+                let [dx, dy, dz] = inputs.displacement;
+                [Some(if axial { dx } else { 0.0 }), Some(dy), Some(dz)]
+            }
+            (LoadCausality::Force, false, _) => [Some(0.0), None, None],
+            (LoadCausality::Force, true, Preload::Displacement) => [Some(inputs.axial_displacement), None, None],
+            (LoadCausality::Force, true, Preload::Force) => [None; 3],
+        };
+        let radial = match p.causality {
+            LoadCausality::Force => inputs.fy != 0.0 || inputs.fz != 0.0,
+            LoadCausality::Displacement => inputs.displacement[1] != 0.0 || inputs.displacement[2] != 0.0,
+        };
         // Aligned shaft, no radial load, equal rollers and a round cup: every roller sees the
         // same equilibrium, exactly, whatever the cage angle.
-        self.axisymmetric = inputs.fy == 0.0
-            && inputs.fz == 0.0
+        self.axisymmetric = !radial
             && inputs.xi == 0.0
             && inputs.zeta == 0.0
             && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
@@ -599,9 +649,10 @@ impl QuasiStatic {
             ring[2] = 0.0;
             merit *= z as f64;
         }
-        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
-        if fixed_axial {
-            ring[0] = 0.0;
+        for c in 0..3 {
+            if self.prescribed[c].is_some() {
+                ring[c] = 0.0;
+            }
         }
         for c in 0..3 {
             let v = ring[c];
@@ -623,8 +674,10 @@ impl QuasiStatic {
             ring[1] += e.f_cone[1] * st.cos_psi;
             ring[2] += e.f_cone[1] * st.sin_psi;
         }
-        if !self.geometry.axial || self.params.preload == Preload::Displacement {
-            ring[0] = 0.0;
+        for c in 0..3 {
+            if self.prescribed[c].is_some() {
+                ring[c] = 0.0;
+            }
         }
         ring
     }
@@ -738,7 +791,6 @@ impl QuasiStatic {
         }
         let z = self.geometry.z;
         let reg = Matrix3::identity() * self.regularisation;
-        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
         let mut schur = Matrix3::<f64>::zeros();
         let mut rhs = -ring;
         // Accumulate D and Schur terms. Global cone unknowns c = (dx, dy, dz); local (dx, dr) = T c.
@@ -765,11 +817,7 @@ impl QuasiStatic {
         }
         // A cone that touches no roller has no stiffness: regularise like the rollers.
         schur -= Matrix3::identity() * (self.regularisation * z as f64);
-        if fixed_axial {
-            schur.set_row(0, &Vector3::new(1.0, 0.0, 0.0).transpose());
-            schur.set_column(0, &Vector3::new(1.0, 0.0, 0.0));
-            rhs[0] = 0.0;
-        }
+        hold_prescribed(&mut schur, &mut rhs, &self.prescribed);
         let dc = match schur.try_inverse() {
             Some(s) => s * rhs,
             None => return false,
@@ -817,7 +865,7 @@ impl QuasiStatic {
     /// takes roller 1's step. The axial Schur complement is Z times one roller's.
     fn newton_step_axisymmetric(&mut self, ring: &Vector3<f64>) -> bool {
         let z = self.geometry.z as f64;
-        let fixed_axial = !self.geometry.axial || self.params.preload == Preload::Displacement;
+        let fixed_axial = self.prescribed[0].is_some();
         let e = self.evals[0];
         let mut a = e.a - Matrix3::identity() * self.regularisation;
         if !self.geometry.axial {
@@ -961,14 +1009,13 @@ impl QuasiStatic {
         if g.axial {
             let fr = (inputs.fy * inputs.fy + inputs.fz * inputs.fz).sqrt();
             let tan_o = libm::tan(g.cup_angle);
-            let sol = match self.params.preload {
-                Preload::Force => {
+            let sol = match self.prescribed[0] {
+                None => {
                     let fa = (inputs.fx.max(0.0) + 0.0 * fr).max(1.2 * fr * tan_o).max(1.0) * load_scale;
                     place(fa)
                 }
-                Preload::Displacement => {
+                Some(target) => {
                     // Bisect the axial load giving the prescribed axial displacement.
-                    let target = inputs.axial_displacement;
                     if target <= 0.0 {
                         None
                     } else {
@@ -985,17 +1032,13 @@ impl QuasiStatic {
                 }
             };
             if let Some([a, rho, dx]) = sol {
-                x[0] = if self.params.preload == Preload::Displacement {
-                    inputs.axial_displacement
-                } else {
-                    dx
-                };
+                x[0] = self.prescribed[0].unwrap_or(dx);
                 for j in 0..z {
                     x[3 + 3 * j] = a;
                     x[4 + 3 * j] = rho;
                 }
-            } else if self.params.preload == Preload::Displacement {
-                x[0] = inputs.axial_displacement;
+            } else if let Some(dx) = self.prescribed[0] {
+                x[0] = dx;
             }
         } else {
             // Cylindrical: rollers sit on the cup under their centrifugal force.
@@ -1010,6 +1053,20 @@ impl QuasiStatic {
     /// unknowns of the previous solve (replaced by the solution); `out` receives everything.
     /// With `skewModel` the roller skew equilibrium is solved too (see `skew.rs`).
     pub fn solve(&mut self, inputs: &Inputs, cage_angle: f64, warm: &mut Vec<f64>, out: &mut Outputs) -> Result<SolveReport, ModelError> {
+        // In displacement causality the force inputs are not loads on the cone.
+        let displaced;
+        let inputs = if self.params.causality == LoadCausality::Displacement {
+            displaced = Inputs {
+                fx: 0.0,
+                fy: 0.0,
+                fz: 0.0,
+                axial_displacement: 0.0,
+                ..*inputs
+            };
+            &displaced
+        } else {
+            inputs
+        };
         if self.skew.is_some() {
             self.solve_skew(inputs, cage_angle, warm, out)
         } else {
@@ -1051,16 +1108,12 @@ impl QuasiStatic {
                 self.predict(&mut x, cage_angle - warm[n]);
             }
         }
-        let fixed_axial_value = match (self.geometry.axial, self.params.preload) {
-            (false, _) => Some(0.0),
-            (true, Preload::Displacement) => Some(inputs.axial_displacement),
-            _ => None,
-        };
+        let prescribed = self.prescribed;
         let result = if cold {
             self.initial_guess(&mut x, inputs, fc, 1.0);
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, fixed_axial_value)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
         } else {
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, fixed_axial_value)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
         };
         let report = match result {
             Ok(r) => r,
@@ -1077,8 +1130,9 @@ impl QuasiStatic {
                     stepped.fy = inputs.fy * f;
                     stepped.fz = inputs.fz * f;
                     stepped.axial_displacement = inputs.axial_displacement * f;
-                    let fav = fixed_axial_value.map(|v| v * f);
-                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, fav) {
+                    stepped.displacement = inputs.displacement.map(|v| v * f);
+                    self.prescribed = prescribed.map(|v| v.map(|v| v * f));
+                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, self.prescribed) {
                         Ok(r) => {
                             total_iters += r.iterations;
                             if stage == 10 {
@@ -1284,10 +1338,12 @@ impl QuasiStatic {
         m_fc: f64,
         m_req: f64,
         tol: f64,
-        fixed_axial: Option<f64>,
+        prescribed: [Option<f64>; 3],
     ) -> Result<SolveReport, ModelError> {
-        if let Some(v) = fixed_axial {
-            x[0] = v;
+        for (c, v) in prescribed.iter().enumerate() {
+            if let Some(v) = v {
+                x[c] = *v;
+            }
         }
         if !self.geometry.axial {
             for j in 0..self.geometry.z {
@@ -1424,7 +1480,7 @@ impl QuasiStatic {
             "Newton solver stopped after {iterations} iterations with relative residual {residual:.3e} (Fx = {:.6} N, Fr = {:.6} N, speed = {:.6} rad/s)",
             inputs.fx, fr, inputs.speed
         );
-        let force_preload = g.axial && self.params.preload == Preload::Force;
+        let force_preload = g.axial && self.prescribed[0].is_none();
         let seat = self.seating_force(inputs);
         let tan_o = libm::tan(g.cup_angle);
         if force_preload && inputs.fx <= seat * 1.05 && fr <= inputs.fx.max(0.0) / tan_o {
@@ -1438,8 +1494,8 @@ impl QuasiStatic {
                 fr * tan_o,
                 inputs.fx
             ));
-        } else if g.axial && self.params.preload == Preload::Displacement && inputs.axial_displacement <= 0.0 && fr > 0.0 {
-            message.push_str("; with axial displacement preload <= 0 the cone is not seated");
+        } else if g.axial && self.prescribed[0].is_some_and(|dx| dx <= 0.0) && (fr > 0.0 || self.prescribed[1].is_some()) {
+            message.push_str("; with an axial displacement <= 0 the cone is not seated");
         } else if runaway {
             message.push_str(&format!(
                 "; displacements exceeded {limit:.3e} m (5 % of the roller diameter, plus the seating travel of the clearance): the load is beyond the model's range"
@@ -1517,6 +1573,7 @@ impl QuasiStatic {
         // (frame-independent; zero when the rings turn together).
         out.power_loss = out.friction_torque * inputs.relative_speed();
         self.write_reactions_and_lives(fy, fz, evaluated, inputs, out);
+        out.stiffness = self.tangent_stiffness(x);
         out.summarize();
     }
 
@@ -1551,6 +1608,11 @@ impl QuasiStatic {
             let d_o = base_o - theta * g.cup.lever[k] - g.crown[k];
             cup[k] = g.cup.law.load(k, d_o).0;
         }
+    }
+
+    /// The oil's dynamic viscosity at ambient pressure this model was built with (Pa s).
+    pub fn oil_viscosity(&self) -> f64 {
+        self.params.eta0
     }
 
     pub fn lubrication(&self) -> Lubrication {

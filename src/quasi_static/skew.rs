@@ -52,7 +52,7 @@ use super::QuasiStatic;
 use crate::bearing::Bearing;
 use crate::contact::line_contact_half_width;
 use crate::geometry::{cross, Geometry};
-use crate::model::{Inputs, ModelError, Outputs, Preload, SolveReport};
+use crate::model::{Inputs, ModelError, Outputs, SolveReport};
 use crate::tribology::dry_mu;
 use nalgebra::{Matrix2x3, Matrix3, Matrix4, Matrix4x3, SMatrix, Vector2, Vector3, Vector4};
 
@@ -402,8 +402,10 @@ impl QuasiStatic {
             f_ref = f_ref.max(e.qi).max(e.qo);
             evals[j] = e;
         }
-        if !self.geometry.axial || self.params.preload == Preload::Displacement {
-            ring[0] = 0.0;
+        for c in 0..3 {
+            if self.prescribed[c].is_some() {
+                ring[c] = 0.0;
+            }
         }
         for v in ring.iter() {
             max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
@@ -432,7 +434,6 @@ impl QuasiStatic {
         let g = &self.geometry;
         let z = g.z;
         let h = 1e-10;
-        let fixed_axial = !g.axial || self.params.preload == Preload::Displacement;
         let sk = self.skew.as_ref().expect("skew model");
         let mut blocks = vec![Blocks::default(); z];
         let mut schur = Matrix3::<f64>::zeros();
@@ -514,11 +515,7 @@ impl QuasiStatic {
             blocks[j] = Blocks { a_inv, b };
         }
         schur -= Matrix3::identity() * (self.regularisation * z as f64);
-        if fixed_axial {
-            schur.set_row(0, &Vector3::new(1.0, 0.0, 0.0).transpose());
-            schur.set_column(0, &Vector3::new(1.0, 0.0, 0.0));
-            rhs[0] = 0.0;
-        }
+        super::hold_prescribed(&mut schur, &mut rhs, &self.prescribed);
         let Some(s_inv) = schur.try_inverse() else { return false };
         let dc = s_inv * rhs;
         step[..3].copy_from_slice(dc.as_slice());
@@ -668,11 +665,10 @@ impl QuasiStatic {
             }
             x
         };
-        if self.params.preload == Preload::Displacement && self.geometry.axial {
-            x[0] = inputs.axial_displacement;
-        }
-        if !self.geometry.axial {
-            x[0] = 0.0;
+        for (c, v) in self.prescribed.iter().enumerate() {
+            if let Some(v) = v {
+                x[c] = *v;
+            }
         }
         let (fc, m_fc, m_req) = self.inertial_loads(inputs);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
@@ -912,7 +908,7 @@ pub(super) fn microslip_power(mu: f64, v_k: f64, micro: f64, u0: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Lubrication, Parameters};
+    use crate::model::{Lubrication, Parameters, Preload};
     use crate::quasi_static::studies::rpm;
 
     /// The [D19] case (32018X, dry, Fr = 35 kN, pocket 0.9 mm) at `mu` and `speed_rpm`, force

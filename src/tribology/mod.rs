@@ -22,7 +22,7 @@ pub mod viscosity;
 pub use film::{film_line, film_line_fast, film_line_log_constant, film_point, thermal_reduction};
 pub use rib::{asperity_share, flange_boundary_mu, flange_viscous_traction, flange_viscous_traction_with, rib_film_traction};
 pub use traction::{FilmContact, Rheology, TractionLaw};
-pub use viscosity::{roelands_viscosity, roelands_viscosity_with, Piezoviscosity, ViscosityTable};
+pub use viscosity::{roelands_viscosity, roelands_viscosity_with, OilGrade, Piezoviscosity, ViscosityTable};
 
 use crate::fastmath as fm;
 

@@ -15,7 +15,13 @@
 //!   [W25]'s rib, `traction` = 1, always uses.
 //! - Temperature: eta(p, T) = eta(p, T0) exp(-beta (T - T0)) with the oil's
 //!   temperature-viscosity coefficient `beta` (used by the thermal traction and the inlet
-//!   shear-heating film reduction).
+//!   shear-heating film reduction, about the oil's bulk temperature).
+//! - Bulk oil temperature (`oilTemperature`, [`OilGrade`]): the kinematic viscosity by
+//!   Walther's equation as ASTM D341 writes it, log10 log10(nu + 0.7) = A - B log10 T (nu in
+//!   mm2/s, T in K), with A and B through the two points of the oil's data sheet, nu at 40 and
+//!   100 degC (`oil.nu40`, `oil.nu100`); the density falls linearly from its 15 degC value,
+//!   rho(T) = rho15 (1 - 6.5e-4 (T - 288.15 K)) (the thermal expansion of mineral and ester
+//!   lubricants, 6-7e-4 1/K, ASTM D1250's tables for lubricating oils); eta = rho nu.
 
 use crate::fastmath as fm;
 
@@ -155,6 +161,68 @@ impl ViscosityTable {
     }
 }
 
+/// A lubricant's viscosity against its bulk temperature (Walther / ASTM D341, two-point fit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OilGrade {
+    /// Walther constants: log10 log10(nu_mm2s + 0.7) = a - b log10(T).
+    a: f64,
+    b: f64,
+    /// Density at 15 degC (kg/m3).
+    rho15: f64,
+}
+
+/// Thermal expansion of lubricating oils (1/K) for the density's temperature dependence.
+const OIL_EXPANSION: f64 = 6.5e-4;
+const T15: f64 = 288.15;
+const T40: f64 = 313.15;
+const T100: f64 = 373.15;
+
+impl OilGrade {
+    /// The grade through nu at 40 degC and at 100 degC (m2/s, nu40 > nu100 > 0) with density
+    /// `rho15` (kg/m3) at 15 degC.
+    pub fn new(nu40: f64, nu100: f64, rho15: f64) -> OilGrade {
+        let ww = |nu: f64| libm::log10(libm::log10(nu * 1e6 + 0.7));
+        let (w40, w100) = (ww(nu40), ww(nu100));
+        let b = (w40 - w100) / (libm::log10(T100) - libm::log10(T40));
+        OilGrade {
+            a: w40 + b * libm::log10(T40),
+            b,
+            rho15,
+        }
+    }
+
+    /// Kinematic viscosity (m2/s) at `t` (K).
+    pub fn kinematic(&self, t: f64) -> f64 {
+        let w = self.a - self.b * libm::log10(t);
+        (libm::pow(10.0, libm::pow(10.0, w)) - 0.7) * 1e-6
+    }
+
+    /// Density (kg/m3) at `t` (K).
+    pub fn density(&self, t: f64) -> f64 {
+        self.rho15 * (1.0 - OIL_EXPANSION * (t - T15))
+    }
+
+    /// Dynamic viscosity (Pa s) at ambient pressure and `t` (K).
+    pub fn dynamic(&self, t: f64) -> f64 {
+        self.density(t) * self.kinematic(t)
+    }
+
+    /// The temperature (K) at which the dynamic viscosity is `eta` (bisection on the monotonic
+    /// law over -50..300 degC; the ends when `eta` lies outside).
+    pub fn temperature_for(&self, eta: f64) -> f64 {
+        let (mut lo, mut hi) = (223.15_f64, 573.15_f64);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.dynamic(mid) > eta {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -199,5 +267,28 @@ mod tests {
         let (eb, er) = (b.eta(5.5e8) / eta0, r.eta(5.5e8) / eta0);
         assert!((eb - (alpha * 5.5e8).exp()).abs() < 1e-9 * eb);
         assert!(er > 80.0 && er < 150.0, "{er}");
+    }
+
+    #[test]
+    fn walther_fit_passes_through_its_points_and_matches_published_grades() {
+        // ISO VG 68, VI 100 (ISO 3448 / ASTM D2270 tables): 68 and 8.6 mm2/s; at 70 degC the
+        // viscosity-temperature charts of bearing catalogues (SKF's, VI 95) read about 20 mm2/s
+        let oil = OilGrade::new(68e-6, 8.6e-6, 870.0);
+        assert!((oil.kinematic(313.15) / 68e-6 - 1.0).abs() < 1e-12);
+        assert!((oil.kinematic(373.15) / 8.6e-6 - 1.0).abs() < 1e-12);
+        let nu70 = oil.kinematic(343.15) * 1e6;
+        assert!(nu70 > 18.5 && nu70 < 21.5, "{nu70}");
+        // monotonic, and the inverse
+        let mut last = f64::INFINITY;
+        for c in (-20..=150).step_by(10) {
+            let t = 273.15 + c as f64;
+            let eta = oil.dynamic(t);
+            assert!(eta < last);
+            last = eta;
+            assert!((oil.temperature_for(eta) - t).abs() < 1e-9, "{c} degC");
+        }
+        // density: 870 at 15 degC, about 848 at 55 degC
+        assert_eq!(oil.density(288.15), 870.0);
+        assert!((oil.density(328.15) - 870.0 * (1.0 - 6.5e-4 * 40.0)).abs() < 1e-9);
     }
 }
