@@ -365,6 +365,9 @@ pub struct Inputs {
     pub fz: f64,
     /// Prescribed axial displacement (m) in displacement preload.
     pub axial_displacement: f64,
+    /// Cup (outer ring) angular speed (rad/s), same sense as `speed`; 0: standing cup.
+    #[serde(default)]
+    pub cup_speed: f64,
     /// Cone displacement relative to the cup (x, y, z; m) in displacement causality.
     pub displacement: [f64; 3],
     /// Bulk oil temperature (K).
@@ -382,9 +385,34 @@ impl Inputs {
             fy: b.fy,
             fz: b.fz,
             axial_displacement: b.axial_displacement,
+            cup_speed: 0.0,
             displacement: [b.axial_displacement, 0.0, 0.0],
             oil_temperature: b.oil_temperature,
         }
+    }
+
+    /// Speed of the cone relative to the cup (rad/s). Seen from the cup, a bearing with both
+    /// rings turning is one with a standing cup and the cone at this speed: the rolling and
+    /// sliding speeds, the traction and the friction follow it alone; only the inertial
+    /// loads (centrifugal force, gyroscopic moment) see the absolute speeds.
+    pub fn relative_speed(&self) -> f64 {
+        self.speed - self.cup_speed
+    }
+
+    /// Reject input combinations the parameters do not support: a turning cup with a lobed
+    /// raceway (the lobes are modelled fixed in space; turning with the cup they would sweep
+    /// past the rollers, which neither model follows).
+    pub fn validate_with(&self, p: &Parameters) -> Result<(), ModelError> {
+        if self.cup_speed != 0.0 && p.outer_lobes > 0 && p.outer_waveform > 0.0 {
+            return Err(ModelError::InvalidInput {
+                name: "cupSpeed",
+                message: format!(
+                    "is {:.6e} rad/s with a lobed cup (outer.lobes = {}): the lobes are modelled fixed in space, a turning lobed cup is not; set cupSpeed = 0 or outer.waveform = 0",
+                    self.cup_speed, p.outer_lobes
+                ),
+            });
+        }
+        Ok(())
     }
 
     /// Reject NaN/inf and values outside the model's range, naming the input.
@@ -397,6 +425,7 @@ impl Inputs {
             ("Fy", self.fy),
             ("Fz", self.fz),
             ("axialDisplacement", self.axial_displacement),
+            ("cupSpeed", self.cup_speed),
             ("displacement.x", self.displacement[0]),
             ("displacement.y", self.displacement[1]),
             ("displacement.z", self.displacement[2]),
@@ -413,15 +442,16 @@ impl Inputs {
         // Speed: n dm up to 1e7 mm/min, three times the fastest aero-engine bearings; beyond
         // it the centrifugal and friction terms overflow.
         let max_speed = 1e7 / (b.pitch_diameter * 1e3) * std::f64::consts::PI / 30.0;
-        if self.speed.abs() > max_speed {
-            return Err(ModelError::InvalidInput {
-                name: "speed",
-                message: format!(
-                    "{:.6e} rad/s exceeds the model's range of +-{max_speed:.1} rad/s (n dm = 1e7 mm/min on a pitch diameter of {:.1} mm)",
-                    self.speed,
-                    b.pitch_diameter * 1e3
-                ),
-            });
+        for (name, v) in [("speed", self.speed), ("cupSpeed", self.cup_speed)] {
+            if v.abs() > max_speed {
+                return Err(ModelError::InvalidInput {
+                    name,
+                    message: format!(
+                        "{v:.6e} rad/s exceeds the model's range of +-{max_speed:.1} rad/s (n dm = 1e7 mm/min on a pitch diameter of {:.1} mm)",
+                        b.pitch_diameter * 1e3
+                    ),
+                });
+            }
         }
         // Forces: far beyond any bearing, and small enough that their squares stay finite.
         for (name, v) in [("Fx", self.fx), ("Fy", self.fy), ("Fz", self.fz)] {

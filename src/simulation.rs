@@ -180,6 +180,7 @@ impl Simulation {
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.failure = None;
         self.state.inputs.validate(&self.bearing)?;
+        self.state.inputs.validate_with(&self.state.params)?;
         self.ensure_model()?;
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
             self.solve_if_dirty()?;
@@ -187,7 +188,7 @@ impl Simulation {
         let st = &mut self.state;
         match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs: m, .. } => {
-                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(st.inputs.speed) * h);
+                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&st.inputs) * h);
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
@@ -267,6 +268,7 @@ impl Simulation {
 
     fn solve_now(&mut self) -> Result<SolveReport, ModelError> {
         self.state.inputs.validate(&self.bearing)?;
+        self.state.inputs.validate_with(&self.state.params)?;
         self.ensure_model()?;
         let z = self.bearing.roller_count;
         self.backup.copy_from(&self.state.outputs);
@@ -380,6 +382,7 @@ impl Simulation {
             var::FY => i.fy,
             var::FZ => i.fz,
             var::AXIAL_DISPLACEMENT => i.axial_displacement,
+            var::CUP_SPEED => i.cup_speed,
             var::DISPLACEMENT_X => i.displacement[0],
             var::DISPLACEMENT_Y => i.displacement[1],
             var::DISPLACEMENT_Z => i.displacement[2],
@@ -487,6 +490,7 @@ impl Simulation {
             var::FY => &mut i.fy,
             var::FZ => &mut i.fz,
             var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
+            var::CUP_SPEED => &mut i.cup_speed,
             var::DISPLACEMENT_X => &mut i.displacement[0],
             var::DISPLACEMENT_Y => &mut i.displacement[1],
             var::DISPLACEMENT_Z => &mut i.displacement[2],

@@ -159,9 +159,10 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
     let _ = writeln!(h, "<h2 id=\"models\">What the element models</h2>");
     let _ = writeln!(
         h,
-        "<p>One rolling bearing between a rotating shaft (the cone, or inner ring) and a fixed housing \
-         (the cup, or outer ring), as a block for drivetrain and system simulation. The master \
-         supplies the cone speed, the external forces on the cone (axial <code>Fx</code>, radial \
+        "<p>One rolling bearing between a rotating shaft (the cone, or inner ring) and a housing \
+         (the cup, or outer ring), fixed or turning (<code>cupSpeed</code>: wheel hubs, idlers), as a \
+         block for drivetrain and system simulation. The master \
+         supplies the cone and cup speeds, the external forces on the cone (axial <code>Fx</code>, radial \
          <code>Fy</code>, <code>Fz</code>) or a prescribed axial displacement, and the shaft deflection \
          angles <code>xi</code>, <code>zeta</code>. The element returns the cone displacement, the \
          reaction forces and moments, the friction torque with its raceway, flange and cage parts, the \
@@ -483,7 +484,7 @@ fn write_drivetrain(h: &mut String) {
         ),
         (
             "frictionTorque, powerLoss",
-            "torque to drive the cone, dissipated power",
+            "torque between the rings (to drive the cone when the cup stands), dissipated power = torque x (speed - cupSpeed)",
             "frictional moment M, power loss",
         ),
     ] {

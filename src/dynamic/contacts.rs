@@ -731,7 +731,7 @@ pub(crate) fn evaluate(
         let da_dskew = -u * sf - e_t * cf;
         let dd = c.dd_half[j];
 
-        // cup: fixed, the global frame
+        // cup: the global frame; it does not translate and turns at `cupSpeed` about the axis
         let cup = Race {
             line: &c.cup,
             pos,
@@ -739,7 +739,7 @@ pub(crate) fn evaluate(
             w,
             a,
             ring_v0: V3::zeros(),
-            ring_omega: V3::zeros(),
+            ring_omega: V3::x() * inputs.cup_speed,
             pt_v0: V3::zeros(),
             pt_omega: V3::x() * psid,
             gap_max: -c.half_clearance * c.cos_o,
@@ -1000,7 +1000,18 @@ pub(crate) fn evaluate(
         let e_perp = V3::x().cross(&e_hat);
         let v_r = v.dot(&e_hat);
         let gap = land.clearance - ecc;
-        let film = land.film(ecc.min(land.clearance - c.crit_gap), cage_rate, v_r, v.dot(&e_perp));
+        // The land turns with the cup: the film seen from the cup, where the cage spins at
+        // its speed relative to the cup and its centre whirls at the tangential speed less
+        // the cup's rotation (Reynolds' wedge term takes the sum of the surface speeds,
+        // (omega_cage + omega_cup) / 2 - whirl; the Couette drag their difference); forces,
+        // moment and dissipation are the same in either frame.
+        let land_rate = cage_rate - inputs.cup_speed;
+        let film = land.film(
+            ecc.min(land.clearance - c.crit_gap),
+            land_rate,
+            v_r,
+            v.dot(&e_perp) - inputs.cup_speed * ecc,
+        );
         tot.f_cage += e_hat * film.radial + e_perp * film.tangential;
         tot.m_cage += film.moment;
         tot.p_cage += film.power;
@@ -1011,8 +1022,8 @@ pub(crate) fn evaluate(
             tot.f_cage -= e_hat * q;
             // damping (q - q_el) v_r and boundary friction against the cage's surface speed
             tot.p_cage += ((q - q_el) * v_r).max(0.0);
-            tot.m_cage -= c.mu_pocket * q * land.radius * cage_rate.signum();
-            tot.p_cage += c.mu_pocket * q * (cage_rate * land.radius).abs();
+            tot.m_cage -= c.mu_pocket * q * land.radius * land_rate.signum();
+            tot.p_cage += c.mu_pocket * q * (land_rate * land.radius).abs();
         }
     }
     if let Some(dy) = dy {

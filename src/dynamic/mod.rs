@@ -222,11 +222,17 @@ impl Dynamic {
         let z = g.z;
         let mut y = vec![0.0; self.n_states()];
         let rest = self.p.start_from_rest;
-        let speed = if rest { 0.0 } else { inputs.speed };
+        let (relative, cup) = if rest {
+            (0.0, 0.0)
+        } else {
+            (inputs.relative_speed(), inputs.cup_speed)
+        };
         // epicyclic speeds of pure rolling (the quasi-static cage slip rate is a parameter
-        // of its torque model, not of the dynamics)
-        let wc = self.c.cage_ratio * speed;
-        let w_spin = self.c.spin_ratio * speed;
+        // of its torque model, not of the dynamics): the cage orbits at the cup's speed plus
+        // its share of the cone's speed relative to the cup, the rollers spin relative to the
+        // cage with that relative speed
+        let wc = self.c.cage_ratio * relative + cup;
+        let w_spin = self.c.spin_ratio * relative;
         let _ = qs;
         y[CONE] = x[0];
         y[CONE + 1] = x[1];
@@ -394,10 +400,13 @@ impl Dynamic {
         out.reaction_fz = -totals.f_cone[2];
         out.rating_c = self.rating.c_r;
         let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
-        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, 0.0);
-        out.life_l10r = self.rating.life_l10r(&self.slice_loads, inputs.speed, 0.0);
+        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
+        out.life_l10r = self.rating.life_l10r(&self.slice_loads, inputs.speed, inputs.cup_speed);
         out.cage_speed = contacts::cage_speed(g, &self.p, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
+        // With the cup turning too it is the torque between the rings: in steady running the
+        // cup is driven the opposite way, and the power loss (all contacts' dissipation, from
+        // the velocities relative to each ring) equals it times speed - cupSpeed.
         let total = -(totals.t_cone_raceway + totals.t_cone_flange);
         out.friction_torque = total;
         // the ring torques of [L22] (docs/model.md): the moments of the contact forces about
@@ -428,19 +437,22 @@ impl Dynamic {
 
     /// The validity range of the isothermal oil films (cage pockets and land, EHL traction):
     /// the Couette (Brinkman) temperature rise eta0 u^2 / (8 k) of a film sheared at the
-    /// cone's surface speed u, the fastest surface in the bearing, must stay below
+    /// cone's surface speed u relative to the cup (every film is sheared at a speed relative
+    /// to a ring or the cage, all of them following that relative speed), must stay below
     /// `MAX_FILM_HEATING`. Beyond it the viscous drag of a cold film brakes cage and rollers
     /// with megawatts that no real oil would carry (F16: 100 Pa s at 40 000 rpm) and thermal
     /// effects, not modelled, decide the result.
     pub fn check_film_heating(&self, inputs: &Inputs) -> Result<(), ModelError> {
-        let u = inputs.speed.abs() * self.g.pitch_contact_radii().0;
+        let u = inputs.relative_speed().abs() * self.g.pitch_contact_radii().0;
         let rise = self.p.eta0 * u * u / (8.0 * OIL_CONDUCTIVITY);
         if rise > MAX_FILM_HEATING {
             return Err(ModelError::InvalidInput {
-                name: "speed",
+                name: if inputs.cup_speed == 0.0 { "speed" } else { "cupSpeed" },
                 message: format!(
-                    "{:.6e} rad/s with oil.eta0 = {} Pa s is outside the dynamic model's range: its isothermal oil films would heat by eta0 u^2 / (8 k) = {rise:.3e} K at the cone's surface speed u = {u:.3} m/s (k = {OIL_CONDUCTIVITY} W/(m K), limit {MAX_FILM_HEATING} K; thermal effects are not modelled); lower the speed or the viscosity",
-                    inputs.speed, self.p.eta0
+                    "{}{:.6e} rad/s with oil.eta0 = {} Pa s is outside the dynamic model's range: its isothermal oil films would heat by eta0 u^2 / (8 k) = {rise:.3e} K at the cone's surface speed u = {u:.3} m/s (k = {OIL_CONDUCTIVITY} W/(m K), limit {MAX_FILM_HEATING} K; thermal effects are not modelled); lower the speed or the viscosity",
+                    if inputs.cup_speed == 0.0 { "" } else { "speed - cupSpeed = " },
+                    inputs.relative_speed(),
+                    self.p.eta0
                 ),
             });
         }

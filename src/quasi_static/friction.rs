@@ -13,6 +13,15 @@
 //! contacts; the torque needed to drive the cone is power / speed, computed from speed
 //! ratios so it stays finite and continuous through zero speed.
 //!
+//! Both rings may turn (`cupSpeed`): every contact speed is a surface speed relative to the
+//! cage, and in the cage frame the cone turns at omega_i - omega_c = (1 - c) (omega_i -
+//! omega_o) and the cup at omega_o - omega_c = -c (omega_i - omega_o) (c the cage ratio), so
+//! all of them, the traction and the dissipated power follow the relative speed
+//! omega_i - omega_o alone: "speed" and "per unit cone speed" below mean that relative speed
+//! (the cone's speed when the cup stands). The torque the power is divided by is then the
+//! torque between the rings (the cone's with a standing cup), zero power when they turn
+//! together.
+//!
 //! EHL (`lubrication` = 0): Hamrock film, boundary/mixed/full-film traction of [W25],
 //! Zhou-Hoeprich rolling resistance; flange: asperity share mu0 exp(-1.8 Lambda^1.2) of the
 //! load plus the viscous film traction over the Hertz ellipse. Dry (`lubrication` = 1): one
@@ -544,7 +553,7 @@ impl FrictionModel {
         slice_loads: &[f64],
         out: &mut Outputs,
     ) -> TorqueParts {
-        let speed = inputs.speed;
+        let speed = inputs.relative_speed();
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let mut parts = TorqueParts::default();
         let (ri, ro) = self.ring_radii;

@@ -34,12 +34,24 @@ pub use friction::{FrictionModel, SliceWeights};
 pub use stiffness::Linearisation;
 
 /// Inputs kept with a warm start (for the temporal predictor).
-const WARM_INPUTS: usize = 10;
+const WARM_INPUTS: usize = 11;
 
 /// The inputs of a solve as the warm start keeps them.
 fn warm_inputs(i: &Inputs) -> [f64; WARM_INPUTS] {
     let [dx, dy, dz] = i.displacement;
-    [i.speed, i.xi, i.zeta, i.fx, i.fy, i.fz, i.axial_displacement, dx, dy, dz]
+    [
+        i.speed,
+        i.xi,
+        i.zeta,
+        i.fx,
+        i.fy,
+        i.fz,
+        i.axial_displacement,
+        dx,
+        dy,
+        dz,
+        i.cup_speed,
+    ]
 }
 
 /// Hold the prescribed cone translations in a Newton step on the cone's Schur complement:
@@ -262,9 +274,11 @@ pub struct QuasiStatic {
     /// cone_chi as alpha + beta lever (`stiffness.rs`).
     cone_chi_fit: (f64, f64),
     flange_chi: f64,
-    /// Kinematic cage speed per unit cone speed (epicyclic, with the slip rate).
+    /// Kinematic cage speed relative to the cup per unit speed of the cone relative to the
+    /// cup (epicyclic, with the slip rate).
     cage_ratio: f64,
-    /// Roller spin relative to the cage per unit cone speed (about the roller axis).
+    /// Roller spin relative to the cage per unit speed of the cone relative to the cup
+    /// (about the roller axis).
     spin_ratio: f64,
     cone_table: SliceTable,
     cup_table: SliceTable,
@@ -357,12 +371,16 @@ impl QuasiStatic {
         })
     }
 
-    /// Cage angular speed for cone speed `speed` (epicyclic kinematics with slip).
-    pub fn cage_speed(&self, speed: f64) -> f64 {
-        self.cage_ratio * speed
+    /// Cage angular speed (epicyclic kinematics with slip): the cup's speed plus the cage's
+    /// share of the cone's speed relative to the cup, omega_c = omega_o + (1 - S_c) r_i /
+    /// (r_i + r_o) (omega_i - omega_o); with slip 0 the mean (omega_i r_i + omega_o r_o) /
+    /// (r_i + r_o) of the two rings' pitch-contact surface speeds over r_i + r_o.
+    pub fn cage_speed(&self, inputs: &Inputs) -> f64 {
+        self.cage_ratio * inputs.relative_speed() + inputs.cup_speed
     }
 
-    /// Roller spin about its own axis relative to the cage, per unit cone speed.
+    /// Roller spin about its own axis relative to the cage, per unit speed of the cone
+    /// relative to the cup.
     pub fn spin_ratio(&self) -> f64 {
         self.spin_ratio
     }
@@ -418,11 +436,13 @@ impl QuasiStatic {
     }
 
     /// Centrifugal force (N, radial) and the moment the contacts must supply for the
-    /// gyroscopic turning of the spin axis (N m, in-plane), at cone speed `speed`.
-    fn inertial_loads(&self, speed: f64) -> (f64, f64, f64) {
+    /// gyroscopic turning of the spin axis (N m, in-plane): both follow the roller's orbit at
+    /// the cage speed (absolute) and its spin relative to the cage (set by the relative
+    /// speed of the rings), so a turning cup changes them even at the same relative speed.
+    fn inertial_loads(&self, inputs: &Inputs) -> (f64, f64, f64) {
         let g = &self.geometry;
-        let wc = self.cage_ratio * speed;
-        let w = self.spin_ratio * speed;
+        let wc = self.cage_speed(inputs);
+        let w = self.spin_ratio * inputs.relative_speed();
         let fc = if self.params.centrifugal {
             g.roller_mass * wc * wc * (g.center[1] + g.cm_offset * g.axis[1])
         } else {
@@ -1064,7 +1084,7 @@ impl QuasiStatic {
     ) -> Result<SolveReport, ModelError> {
         self.prepare(inputs, cage_angle);
         let n = self.n_unknowns();
-        let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
+        let (fc, m_fc, m_req) = self.inertial_loads(inputs);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
 
         // The warm start: the unknowns, the cage angle and the inputs they were solved at (a
@@ -1435,9 +1455,9 @@ impl QuasiStatic {
     /// The axial force below which the rollers' centrifugal force, resting on cup and flange,
     /// pushes the cone out (force triangle Qo n_o + Qf n_f + Fc e_r = 0; the flange pushes the
     /// cone back by Qf sin a_f per roller).
-    fn seating_force(&self, speed: f64) -> f64 {
+    fn seating_force(&self, inputs: &Inputs) -> f64 {
         let g = &self.geometry;
-        let (fc, _, _) = self.inertial_loads(speed);
+        let (fc, _, _) = self.inertial_loads(inputs);
         match (&g.flange, g.axial) {
             (Some(f), true) if fc > 0.0 => {
                 let (no, nf) = (g.cup.normal, f.normal);
@@ -1461,7 +1481,7 @@ impl QuasiStatic {
             inputs.fx, fr, inputs.speed
         );
         let force_preload = g.axial && self.prescribed[0].is_none();
-        let seat = self.seating_force(inputs.speed);
+        let seat = self.seating_force(inputs);
         let tan_o = libm::tan(g.cup_angle);
         if force_preload && inputs.fx <= seat * 1.05 && fr <= inputs.fx.max(0.0) / tan_o {
             message.push_str(&format!(
@@ -1517,7 +1537,7 @@ impl QuasiStatic {
         out.reaction_fx = if self.geometry.axial { fx } else { 0.0 };
         out.reaction_my = my;
         out.reaction_mz = mz;
-        out.cage_speed = self.cage_speed(inputs.speed);
+        out.cage_speed = self.cage_speed(inputs);
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
@@ -1549,7 +1569,9 @@ impl QuasiStatic {
         out.friction_torque = torque.raceway + torque.flange;
         out.friction_torque_cone = torque.cone;
         out.friction_torque_cup = torque.cup;
-        out.power_loss = out.friction_torque * inputs.speed;
+        // Dissipated power: the friction torque between the rings times their relative speed
+        // (frame-independent; zero when the rings turn together).
+        out.power_loss = out.friction_torque * inputs.relative_speed();
         self.write_reactions_and_lives(fy, fz, evaluated, inputs, out);
         out.stiffness = self.tangent_stiffness(x);
         out.summarize();
@@ -1564,9 +1586,9 @@ impl QuasiStatic {
         out.reaction_fz = fz;
         out.rating_c = self.rating.c_r;
         let fr = (fy * fy + fz * fz).sqrt();
-        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, 0.0);
+        out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
         let loads = &self.slice_load_buffer[..2 * self.geometry.slices * rollers];
-        out.life_l10r = self.rating.life_l10r(loads, inputs.speed, 0.0);
+        out.life_l10r = self.rating.life_l10r(loads, inputs.speed, inputs.cup_speed);
     }
 
     /// Slice loads of roller `j` at the solution `x` (cone, cup), for the friction model and tests.

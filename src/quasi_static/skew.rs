@@ -383,7 +383,15 @@ impl QuasiStatic {
             let st = self.setup[j];
             let dr = x[1] * st.cos_psi + x[2] * st.sin_psi;
             let b = 3 + PER * j;
-            let e = self.eval_skew(j, [x[0], dr], [x[b], x[b + 1], x[b + 2], x[b + 3]], inputs.speed, fc, m_fc, m_req);
+            let e = self.eval_skew(
+                j,
+                [x[0], dr],
+                [x[b], x[b + 1], x[b + 2], x[b + 3]],
+                inputs.relative_speed(),
+                fc,
+                m_fc,
+                m_req,
+            );
             ring[0] += e.f_cone[0];
             ring[1] += e.f_cone[1] * st.cos_psi;
             ring[2] += e.f_cone[1] * st.sin_psi;
@@ -446,7 +454,11 @@ impl QuasiStatic {
                     let out_dir = if zeta < 0.0 { -1.0 } else { 1.0 };
                     let dir = if zeta.abs() >= sk.phi_max { out_dir } else { -out_dir };
                     qp[3] += dir * h;
-                    (self.eval_skew(j, cp, qp, inputs.speed, fc, m_fc, m_req), evals[j], dir * h)
+                    (
+                        self.eval_skew(j, cp, qp, inputs.relative_speed(), fc, m_fc, m_req),
+                        evals[j],
+                        dir * h,
+                    )
                 } else {
                     if col < 4 {
                         qp[col] += h;
@@ -456,8 +468,8 @@ impl QuasiStatic {
                         cm[col - 4] -= h;
                     }
                     (
-                        self.eval_skew(j, cp, qp, inputs.speed, fc, m_fc, m_req),
-                        self.eval_skew(j, cm, qm, inputs.speed, fc, m_fc, m_req),
+                        self.eval_skew(j, cp, qp, inputs.relative_speed(), fc, m_fc, m_req),
+                        self.eval_skew(j, cm, qm, inputs.relative_speed(), fc, m_fc, m_req),
                         2.0 * h,
                     )
                 };
@@ -565,7 +577,15 @@ impl QuasiStatic {
             let b0 = 3 + PER * j;
             let c = [x[0], x[1] * st.cos_psi + x[2] * st.sin_psi];
             let f = |zeta: f64| {
-                let e = self.eval_skew(j, c, [x[b0], x[b0 + 1], x[b0 + 2], zeta * ls], inputs.speed, fc, m_fc, m_req);
+                let e = self.eval_skew(
+                    j,
+                    c,
+                    [x[b0], x[b0 + 1], x[b0 + 2], zeta * ls],
+                    inputs.relative_speed(),
+                    fc,
+                    m_fc,
+                    m_req,
+                );
                 e.r[3]
             };
             let z0 = x[b0 + 3] / ls;
@@ -650,7 +670,7 @@ impl QuasiStatic {
                 x[c] = *v;
             }
         }
-        let (fc, m_fc, m_req) = self.inertial_loads(inputs.speed);
+        let (fc, m_fc, m_req) = self.inertial_loads(inputs);
         let tol = (self.params.tolerance * 1e-3).clamp(1e-13, 1e-9);
         let mut evals = vec![SkewEval::default(); z];
         let mut step = vec![0.0; n];
@@ -739,7 +759,8 @@ impl QuasiStatic {
         let sk = self.skew.as_ref().expect("skew model");
         let z = g.z;
         let ns = g.slices;
-        let speed = inputs.speed;
+        // The rolling and sliding speeds follow the cone's speed relative to the cup.
+        let speed = inputs.relative_speed();
         let mu = self.params.mu;
         let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut h_race, mut h_flange, mut h_cage) = (0.0, 0.0, 0.0);
@@ -819,7 +840,7 @@ impl QuasiStatic {
         out.reaction_fx = if g.axial { fx } else { 0.0 };
         out.reaction_my = my;
         out.reaction_mz = mz;
-        out.cage_speed = self.cage_speed(speed);
+        out.cage_speed = self.cage_speed(inputs);
         out.solver_iterations = report.iterations as i32;
         out.solver_residual = report.residual;
         // T = H / omega, with the sign of speed (zero at standstill: dry friction fades there).
@@ -928,7 +949,7 @@ mod tests {
     fn cone_load_rebuilt(qs: &QuasiStatic, i: &Inputs, x: &[f64], out: &Outputs) -> [f64; 5] {
         let g = &qs.geometry;
         let mu = qs.params.mu;
-        let omega_c = i.speed - qs.cage_speed(i.speed);
+        let omega_c = i.speed - qs.cage_speed(i);
         let gen = [g.cone_angle.cos(), -g.cone_angle.sin()];
         let n = g.cone.normal;
         let (mut cone, mut cup) = (vec![0.0; g.slices], vec![0.0; g.slices]);

@@ -308,7 +308,7 @@ fn cylindrical_bearing_balances_centrifugal_force_and_has_three_preload_zones() 
     // Radial equilibrium of a loaded roller with zero contact angles: Qo = Qi + Fc.
     let s = solve(&b, &p, &i);
     let g = &s.qs.geometry;
-    let wc = s.qs.cage_speed(i.speed);
+    let wc = s.qs.cage_speed(&i);
     let fc = g.roller_mass * wc * wc * g.center[1];
     for j in 0..b.roller_count {
         if s.out.qi[j] > 0.0 {
@@ -450,7 +450,7 @@ fn debug_iterations() {
     let mut qs = QuasiStatic::new(&b, &p).unwrap();
     let mut x = vec![0.0; qs.n_unknowns()];
     qs.prepare(&i, 0.0);
-    let (fc, mfc, mreq) = qs.inertial_loads(i.speed);
+    let (fc, mfc, mreq) = qs.inertial_loads(&i);
     qs.initial_guess(&mut x, &i, fc, 1.0);
     for it in 0..60 {
         let (mr, me, fr, ring) = qs.evaluate(&x, &i, fc, mfc, mreq);
@@ -489,9 +489,9 @@ fn debug_warm_step() {
     let mut out = Outputs::new(b.roller_count);
     let mut x = Vec::new();
     qs.solve(&i, 0.0, &mut x, &mut out).unwrap();
-    let angle = qs.cage_speed(i.speed) * 1e-3;
+    let angle = qs.cage_speed(&i) * 1e-3;
     qs.prepare(&i, angle);
-    let (fc, mfc, mreq) = qs.inertial_loads(i.speed);
+    let (fc, mfc, mreq) = qs.inertial_loads(&i);
     for it in 0..10 {
         let (mr, me, fr, ring) = qs.evaluate(&x, &i, fc, mfc, mreq);
         let (mut worst, mut wj, mut wc) = (0.0, 0, 0);

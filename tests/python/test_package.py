@@ -22,7 +22,7 @@ CONTRACT_PARAMETERS = [
     "outer.waveform", "cageSlipRate",
 ]
 CONTRACT_PER_ROLLER_PARAMETERS = ["dD"]
-CONTRACT_INPUTS = ["speed", "xi", "zeta", "Fx", "Fy", "Fz", "axialDisplacement"]
+CONTRACT_INPUTS = ["speed", "xi", "zeta", "Fx", "Fy", "Fz", "axialDisplacement", "cupSpeed"]
 CONTRACT_OUTPUTS = [
     "frictionTorque", "frictionTorque.raceway", "frictionTorque.flange", "frictionTorque.cage",
     "powerLoss", "cone.x", "cone.y", "cone.z", "reaction.Fx", "reaction.My", "reaction.Mz",
