@@ -44,6 +44,11 @@ fn displacements_of_a_force_solution_give_its_forces_back() {
             ],
         );
         let scale = fx.abs().max(fy.hypot(fz));
+        let worst = [od.reaction_fx - of.reaction_fx, od.reaction_fy - fy, od.reaction_fz - fz]
+            .iter()
+            .fold(0.0_f64, |m, d| m.max(d.abs()))
+            / scale;
+        eprintln!("{preset}: round trip, largest force difference {worst:.2e} of the load");
         for (name, a, b) in [
             ("Fx", od.reaction_fx, of.reaction_fx),
             ("Fy", od.reaction_fy, fy),
