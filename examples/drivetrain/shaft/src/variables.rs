@@ -78,7 +78,7 @@ pub fn variables() -> Vec<Var> {
         var("preload.displacement", P_PRELOAD, Parameter, 40e-6, "m", "Axial preload by displacement: the total interference of the pair, delta/2 added to each bearing's displacement.x"),
         var("mesh.position", P_MESH_POS, Parameter, 0.05, "m", "Axial position of the gear mesh point"),
         var("mesh.radius", P_MESH_RADIUS, Parameter, 0.2, "m", "Pitch radius of the gear: the mesh point is at (mesh.position, mesh.radius, 0)"),
-        var("mesh.Fa", P_MESH_FA, Parameter, 5000.0, "N", "Mean axial mesh force on the shaft (+X)"),
+        var("mesh.Fa", P_MESH_FA, Parameter, 8000.0, "N", "Mean axial mesh force on the shaft (+X)"),
         var("mesh.Fr", P_MESH_FR, Parameter, 20000.0, "N", "Mean radial mesh force on the shaft (+Y)"),
         var("mesh.Ft", P_MESH_FT, Parameter, 40000.0, "N", "Mean tangential mesh force on the shaft (+Z): torque mesh.radius * Ft about X"),
         var("mesh.modulation", P_MESH_MOD, Parameter, 0.2, "1", "Relative amplitude m of the mesh force: F(t) = F0 r(t) (1 + m sin(2 pi f t))"),
