@@ -81,3 +81,33 @@ def test_mirror_symmetry(fmus):
     res = run(fmus, shaft_parameters={"mesh.modulation": 0.0}, stop=0.05, step=0.01)
     a, b = res["reactions"][-1]
     assert dt.radial(a) < dt.radial(b)
+
+
+def test_committed_ssd_is_the_generated_one():
+    import ssp
+
+    assert ssp.SSD.read_text() == ssp.ssd_text(), "run python examples/drivetrain/ssp.py to rewrite SystemStructure.ssd"
+
+
+def test_libcosim_runs_the_ssp_like_fmpy(fmus, tmp_path):
+    """The same system from SystemStructure.ssd in libcosim's fixed-step (Jacobi) algorithm:
+    its bearing outputs at t + h are the equilibrium of the load at t (the Gauss-Seidel
+    loop's at t), to 1e-5 of the load."""
+    pytest.importorskip("libcosimpy.CosimExecution")
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+
+    import ssp
+
+    log_output_level(CosimLogLevel.WARNING)
+    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=fmus[0], shaft_fmu=fmus[1])
+    lc = ssp.run_libcosim(package, stop=1.0, step=0.002)
+    fm = run(fmus, stop=1.0, step=0.002)
+    p = dict(dt.SHAFT_PARAMETERS)
+    worst = 0.0
+    for j in range(4, len(fm["time"]) - 1):
+        s = scale(p, fm["time"][j])
+        for i in range(2):
+            worst = max(worst, (np.abs(lc["reactions"][j + 1][i] - fm["reactions"][j][i]) / s).max())
+    assert worst <= 1e-5, f"libcosim and fmpy differ by {worst:.3e} of the load"
+    # the lives and torques come through as well
+    assert np.all(lc["extra"][-1][:, 1] > 0) and np.all(np.isfinite(lc["extra"][-1]))
