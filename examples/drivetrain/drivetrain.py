@@ -57,6 +57,8 @@ SHAFT_PARAMETERS = {
     "mesh.rampTime": 0.0,
     "relaxation": 1.0,
     "shaft.speed": 300.0,
+    "thermal.expansion": 11.7e-6,
+    "thermal.radialLength": 0.0,
 }
 
 
@@ -138,6 +140,12 @@ def t_matrix(s: float, sigma: float) -> np.ndarray:
     )
 
 
+def preload(p: dict, delta_t: float = 0.0) -> float:
+    """The pair's interference with the thermal part (as the Shaft FMU computes it)."""
+    span = p["bearingB.position"] - p["bearingA.position"]
+    return p["preload.displacement"] + p["thermal.expansion"] * delta_t * (p["thermal.radialLength"] - span)
+
+
 def mesh_force(p: dict, t: float) -> np.ndarray:
     ramp = min(1.0, max(0.0, t / p["mesh.rampTime"])) if p["mesh.rampTime"] > 0 else 1.0
     f = ramp * (1.0 + p["mesh.modulation"] * math.sin(2 * math.pi * p["mesh.frequency"] * t))
@@ -158,10 +166,14 @@ def residual(p: dict, t: float, reactions: list[np.ndarray]) -> np.ndarray:
     return r
 
 
-def relative(p: dict, r: np.ndarray, f: np.ndarray) -> float:
+def relative(p: dict, r: np.ndarray, f: np.ndarray, reactions: list[np.ndarray]) -> float:
+    """As the Shaft FMU's residual.relative."""
     span = p["bearingB.position"] - p["bearingA.position"]
-    scale = np.array([1, 1, 1, 1 / span, 1 / span])
-    return float(np.linalg.norm(r * scale) / np.linalg.norm(f * scale))
+    w = np.array([1, 1, 1, 1 / span, 1 / span])
+    scale = np.linalg.norm(f * w)
+    if scale == 0.0:
+        scale = max(np.linalg.norm(x * w) for x in reactions)
+    return float(np.linalg.norm(r * w) / (scale if scale > 0 else 1.0))
 
 
 # ---------------------------------------------------------------------------------------
@@ -210,6 +222,7 @@ def cosimulate(
     stop: float = 1.0,
     step: float = 0.01,
     oil_temperature: float | None = None,
+    delta_t: float = 0.0,
     bearing_fmu: Path = BEARING_FMU,
     shaft_fmu: Path = SHAFT_FMU,
 ) -> Result:
@@ -218,9 +231,9 @@ def cosimulate(
     shaft = Slave(shaft_fmu, "shaft")
     bearings = [Slave(bearing_fmu, name) for name in BEARINGS]
     try:
-        shaft.initialize(p)
+        shaft.initialize(dict(p, **{"thermal.deltaT": delta_t}))
         for b in bearings:
-            b.initialize(bearing_parameters(p["shaft.speed"], oil_temperature, p["preload.displacement"]))
+            b.initialize(bearing_parameters(p["shaft.speed"], oil_temperature, preload(p, delta_t)))
         # The bearings' initial outputs (preloaded, at rest) to the shaft's inputs.
         transfer_to_shaft(shaft, bearings)
         out = Result()
@@ -238,7 +251,7 @@ def cosimulate(
             out.time.append(tn)
             out.force.append(shaft.get(["mesh.Fx", "mesh.Fy", "mesh.Fz"]))
             out.reactions.append(reactions)
-            out.residual.append(relative(p, residual(p, tn, reactions), applied(p, tn)))
+            out.residual.append(relative(p, residual(p, tn, reactions), applied(p, tn), reactions))
             out.q.append(shaft.get(["shaft.u", "shaft.v", "shaft.w", "shaft.thetaY", "shaft.thetaZ"]))
             extra = [b.get(["frictionTorque", "powerLoss", "life.L10", "life.L10r"]) for b in bearings]
             out.friction.append([e[0] for e in extra])
@@ -279,12 +292,12 @@ class BearingFunction:
         self.slave.free()
 
 
-def direct_solve(p: dict, t: float, bearing: BearingFunction, q0=None, tol: float = 1e-9, max_iter: int = 50):
+def direct_solve(p: dict, t: float, bearing: BearingFunction, q0=None, tol: float = 1e-9, max_iter: int = 50, delta_t: float = 0.0):
     """Newton on Q_F(t) - sum T_i^T R_i(T_i q + d0) = 0 to |residual| <= tol |Q_F| (the
     bearing's reactions are exact to a few 1e-10 of the load: its own Newton tolerance)."""
     q = np.zeros(5) if q0 is None else np.array(q0, dtype=float)
     f = applied(p, t)
-    d0 = np.array([p["preload.displacement"] / 2, 0, 0, 0, 0])
+    d0 = np.array([preload(p, delta_t) / 2, 0, 0, 0, 0])
     for _ in range(max_iter):
         reactions, k = [], np.zeros((5, 5))
         for i, name in enumerate(BEARINGS):
@@ -293,15 +306,36 @@ def direct_solve(p: dict, t: float, bearing: BearingFunction, q0=None, tol: floa
             reactions.append(r)
             k += tm.T @ ki @ tm
         res = residual(p, t, reactions)
-        if relative(p, res, f) <= tol:
+        if relative(p, res, f, reactions) <= tol:
             return q, reactions
         q = q + np.linalg.solve(k, res)
-    raise RuntimeError(f"direct solve did not converge: relative residual {relative(p, res, f)}")
+    raise RuntimeError(f"direct solve did not converge: relative residual {relative(p, res, f, reactions)}")
 
 
 # ---------------------------------------------------------------------------------------
 # Command line: a run, load sharing, lives and a plot
 # ---------------------------------------------------------------------------------------
+
+
+def preload_sweep(speeds, delta_ts, oil_temperatures, bearing_fmu: Path = BEARING_FMU, shaft_fmu: Path = SHAFT_FMU) -> dict:
+    """The pair without mesh force: preload (bearing A's reaction.Fx, B's equal by symmetry)
+    and the pair's friction torque against speed, for each shaft-housing temperature
+    difference (at the oil's reference temperature) and each oil temperature (at deltaT 0)."""
+    unloaded = {"mesh.Fa": 0.0, "mesh.Fr": 0.0, "mesh.Ft": 0.0}
+    out = {"speed": np.array(speeds, dtype=float), "deltaT": {}, "oil": {}}
+    for dT in delta_ts:
+        rows = []
+        for w in speeds:
+            r = cosimulate(dict(unloaded, **{"shaft.speed": w}), stop=0.03, step=0.01, delta_t=dT, bearing_fmu=bearing_fmu, shaft_fmu=shaft_fmu).arrays()
+            rows.append((r["reactions"][-1][0][0], r["friction"][-1].sum()))
+        out["deltaT"][dT] = np.array(rows)
+    for temp in oil_temperatures:
+        rows = []
+        for w in speeds:
+            r = cosimulate(dict(unloaded, **{"shaft.speed": w}), stop=0.03, step=0.01, oil_temperature=temp, bearing_fmu=bearing_fmu, shaft_fmu=shaft_fmu).arrays()
+            rows.append((r["reactions"][-1][0][0], r["friction"][-1].sum()))
+        out["oil"][temp] = np.array(rows)
+    return out
 
 
 def radial(r: np.ndarray) -> float:
@@ -328,35 +362,60 @@ def main():
     print(f"axial loads: A {rA[:, 0].min():.0f} .. {rA[:, 0].max():.0f} N, B {rB[:, 0].min():.0f} .. {rB[:, 0].max():.0f} N")
     print(f"friction torque (sum): {res['friction'].sum(axis=1).min():.2f} .. {res['friction'].sum(axis=1).max():.2f} N.m")
     print(f"L10 A, B at the end: {res['l10'][-1][0]:.0f} h, {res['l10'][-1][1]:.0f} h; L10r {res['l10r'][-1][0]:.0f} h, {res['l10r'][-1][1]:.0f} h")
+    speeds = [0.0, 50.0, 100.0, 200.0, 300.0, 400.0, 500.0, 600.0]
+    sweep = preload_sweep(speeds, [0.0, 2.0, 5.0, 8.0], [303.15, 333.15, 363.15])
+    print("preload (N) of the unloaded pair against speed", [int(w) for w in speeds], "rad/s:")
+    for dT, rows in sweep["deltaT"].items():
+        print(f"  shaft - housing {dT:4.1f} K: {np.round(rows[:, 0]).astype(int).tolist()}")
+    for temp, rows in sweep["oil"].items():
+        print(f"  oil {temp - 273.15:5.1f} degC: preload {np.round(rows[:, 0]).astype(int).tolist()}, pair friction torque {np.round(rows[:, 1], 1).tolist()} N.m")
     if args.plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
-        t = res["time"]
-        ax[0].plot(t, [radial(a) for a in rA], label="A radial")
-        ax[0].plot(t, [radial(b) for b in rB], label="B radial")
-        ax[0].plot(t, rA[:, 0], "--", label="A axial")
-        ax[0].plot(t, rB[:, 0], "--", label="B axial")
-        ax[0].set_ylabel("load carried (N)")
-        ax[0].legend()
-        ax[1].plot(t, res["friction"][:, 0], label="A")
-        ax[1].plot(t, res["friction"][:, 1], label="B")
-        ax[1].set_ylabel("friction torque (N.m)")
-        ax[1].legend()
-        ax[2].semilogy(t, res["l10"][:, 0], label="L10 A")
-        ax[2].semilogy(t, res["l10"][:, 1], label="L10 B")
-        ax[2].semilogy(t, res["l10r"][:, 0], "--", label="L10r A")
-        ax[2].semilogy(t, res["l10r"][:, 1], "--", label="L10r B")
-        ax[2].set_ylabel("life (h)")
-        ax[2].set_xlabel("time (s)")
-        ax[2].legend()
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=100)
+        plot(res, sweep, args.plot)
         print(f"plot: {args.plot}")
 
+
+def plot(res: dict, sweep: dict, path: Path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rA = res["reactions"][:, 0, :]
+    rB = res["reactions"][:, 1, :]
+    t = res["time"]
+    fig, ax = plt.subplots(2, 2, figsize=(12, 8))
+    ax[0, 0].plot(t, [radial(a) for a in rA], label="A radial")
+    ax[0, 0].plot(t, [radial(b) for b in rB], label="B radial")
+    ax[0, 0].plot(t, rA[:, 0], "--", label="A axial")
+    ax[0, 0].plot(t, rB[:, 0], "--", label="B axial")
+    ax[0, 0].set_ylabel("load carried (N)")
+    ax[0, 0].set_xlabel("time (s)")
+    ax[0, 0].set_title("load sharing under the mesh force")
+    ax[0, 0].legend()
+    ax[0, 1].semilogy(t, res["l10"][:, 0], label="L10 A")
+    ax[0, 1].semilogy(t, res["l10"][:, 1], label="L10 B")
+    ax[0, 1].semilogy(t, res["l10r"][:, 0], "--", label="L10r A")
+    ax[0, 1].semilogy(t, res["l10r"][:, 1], "--", label="L10r B")
+    ax[0, 1].set_ylabel("rating life (h)")
+    ax[0, 1].set_xlabel("time (s)")
+    ax[0, 1].set_title("lives (ISO 281, ISO/TS 16281)")
+    ax[0, 1].legend()
+    w = sweep["speed"]
+    for dT, rows in sweep["deltaT"].items():
+        ax[1, 0].plot(w, rows[:, 0], "o-", label=f"shaft - housing {dT:g} K")
+    ax[1, 0].set_xlabel("speed (rad/s)")
+    ax[1, 0].set_ylabel("preload (N)")
+    ax[1, 0].set_title("preload of the unloaded pair")
+    ax[1, 0].legend()
+    for temp, rows in sweep["oil"].items():  # from the first speed > 0: at rest the breakaway torque
+        ax[1, 1].plot(w[w > 0], rows[w > 0, 1], "o-", label=f"oil {temp - 273.15:g} degC")
+    ax[1, 1].set_xlabel("speed (rad/s)")
+    ax[1, 1].set_ylabel("friction torque of the pair (N.m)")
+    ax[1, 1].set_title("friction torque of the unloaded pair")
+    ax[1, 1].legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
 
 if __name__ == "__main__":
     main()

@@ -111,3 +111,26 @@ def test_libcosim_runs_the_ssp_like_fmpy(fmus, tmp_path):
     assert worst <= 1e-5, f"libcosim and fmpy differ by {worst:.3e} of the load"
     # the lives and torques come through as well
     assert np.all(lc["extra"][-1][:, 1] > 0) and np.all(np.isfinite(lc["extra"][-1]))
+
+
+def test_thermal_preload_and_speed(fmus):
+    """Without mesh force the pair stays centred and each bearing carries the preload of its
+    interference: a warmer shaft (O arrangement, shaft growth only) lowers it as the bearing
+    alone at the reduced interference says; speed raises it (the rollers' centrifugal force
+    at fixed displacement)."""
+    p = dict(dt.SHAFT_PARAMETERS, **{"mesh.Fa": 0.0, "mesh.Fr": 0.0, "mesh.Ft": 0.0})
+    cold = run(fmus, shaft_parameters=p, stop=0.03, step=0.01)
+    warm = run(fmus, shaft_parameters=p, stop=0.03, step=0.01, delta_t=5.0)
+    a_cold, b_cold = cold["reactions"][-1]
+    a_warm, b_warm = warm["reactions"][-1]
+    assert abs(a_cold[0] - b_cold[0]) <= 1e-9 * a_cold[0] and abs(a_warm[0] - b_warm[0]) <= 1e-9 * a_warm[0]
+    bearing = dt.BearingFunction(fmus[0], p["shaft.speed"], None, p["preload.displacement"])
+    try:
+        r, _ = bearing(np.array([dt.preload(p, 5.0) / 2, 0, 0, 0, 0]))
+    finally:
+        bearing.free()
+    assert dt.preload(p, 5.0) < p["preload.displacement"]
+    assert abs(a_warm[0] - r[0]) <= 1e-9 * r[0], (a_warm[0], r[0])
+    assert a_warm[0] < 0.6 * a_cold[0]
+    fast = run(fmus, shaft_parameters=dict(p, **{"shaft.speed": 600.0}), stop=0.03, step=0.01)
+    assert fast["reactions"][-1][0][0] > a_cold[0]

@@ -90,9 +90,13 @@ impl Instance {
 
     fn shaft(&self) -> Shaft {
         let p = |vr: u32| self.values[vr as usize];
+        // Thermal interference: the shaft's axial growth between the bearings separates the
+        // cones of an O pair (less preload), the cones' radial growth presses them into
+        // their cups (more).
+        let thermal = p(P_ALPHA) * p(IN_DELTA_T) * (p(P_RADIAL_LENGTH) - (p(P_POS_B) - p(P_POS_A)));
         Shaft {
             pos: [p(P_POS_A), p(P_POS_B)],
-            preload: p(P_PRELOAD),
+            preload: p(P_PRELOAD) + thermal,
             mesh_pos: p(P_MESH_POS),
             mesh_radius: p(P_MESH_RADIUS),
             mesh_force: [p(P_MESH_FA), p(P_MESH_FR), p(P_MESH_FT)],
@@ -223,7 +227,7 @@ impl Instance {
         // The state the bearing outputs belong to, its residual at the load now.
         let q_in = s.q_from_cones(&cones);
         let residual = s.residual(t, &r);
-        let rel = s.relative(&residual, &s.applied(t));
+        let rel = s.relative(&residual, &s.applied(t), &r);
         let status = match s.newton(&q_in, t + h, &r, &k) {
             Some(q) if q.iter().all(|x| x.is_finite()) => {
                 self.q = q;

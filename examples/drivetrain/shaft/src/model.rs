@@ -31,7 +31,7 @@ pub type M5 = [[f64; 5]; 5];
 pub struct Shaft {
     /// Axial positions of bearing A and B (m).
     pub pos: [f64; 2],
-    /// Total axial preload interference δ (m).
+    /// Total axial preload interference δ (m), the thermal part included (`fmi.rs`).
     pub preload: f64,
     /// Axial position g and pitch radius ρ of the mesh point (m).
     pub mesh_pos: f64,
@@ -114,11 +114,19 @@ impl Shaft {
         r
     }
 
-    /// |residual| / |applied|, moments divided by the bearing span.
-    pub fn relative(&self, residual: &V5, applied: &V5) -> f64 {
+    /// |residual| / |applied|, moments divided by the bearing span; without an applied load
+    /// relative to the larger bearing reaction (the preload), absolute if there is none.
+    pub fn relative(&self, residual: &V5, applied: &V5, reactions: &[V5; 2]) -> f64 {
         let span = (self.pos[1] - self.pos[0]).abs().max(f64::MIN_POSITIVE);
         let norm = |v: &V5| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + (v[3] / span).powi(2) + (v[4] / span).powi(2)).sqrt();
-        norm(residual) / norm(applied).max(f64::MIN_POSITIVE)
+        let mut scale = norm(applied);
+        if scale == 0.0 {
+            scale = norm(&reactions[0]).max(norm(&reactions[1]));
+        }
+        if scale == 0.0 {
+            scale = 1.0;
+        }
+        norm(residual) / scale
     }
 
     /// K = Σ T_iᵀ K_i T_i.
@@ -238,7 +246,7 @@ mod tests {
         let q0 = [0.0; 5];
         let q1 = s.newton(&q0, 0.0, &reaction(&q0), &k).unwrap();
         let r = s.residual(0.0, &reaction(&q1));
-        assert!(s.relative(&r, &s.applied(0.0)) < 1e-12, "{r:?}");
+        assert!(s.relative(&r, &s.applied(0.0), &reaction(&q1)) < 1e-12, "{r:?}");
         let cones: [[f64; 3]; 2] = std::array::from_fn(|i| {
             let d = s.bearing_input(i, &q1);
             [d[0], d[1], d[2]]

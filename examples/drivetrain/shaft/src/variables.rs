@@ -1,7 +1,7 @@
 //! The shaft FMU's variables: one table, read by the FMU (value references, start values,
 //! what may be set when) and by the packager (modelDescription.xml). All variables are Real.
 //!
-//! Value references: parameters 0..13, bearing A's inputs 100..132, bearing B's 200..232,
+//! Value references: parameters 0..15, the temperature input 90, bearing A's inputs 100..132, bearing B's 200..232,
 //! outputs 300..335.
 
 /// FMI causality of a variable.
@@ -38,6 +38,10 @@ pub const P_MESH_FREQ: u32 = 9;
 pub const P_RELAX: u32 = 10;
 pub const P_SPEED: u32 = 11;
 pub const P_RAMP: u32 = 12;
+pub const P_ALPHA: u32 = 13;
+pub const P_RADIAL_LENGTH: u32 = 14;
+/// Input: shaft minus housing temperature.
+pub const IN_DELTA_T: u32 = 90;
 
 /// First input of bearing A (B: +100): reaction Fx, Fy, Fz, My, Mz, then stiffness[i,j]
 /// row by row, then cone.x/y/z.
@@ -86,6 +90,23 @@ pub fn variables() -> Vec<Var> {
         var("relaxation", P_RELAX, Parameter, 1.0, "1", "Fraction of the Newton step taken per communication step (1: full Newton)"),
         var("shaft.speed", P_SPEED, Parameter, 300.0, "rad/s", "Shaft (cone) speed, passed to the bearings through the output speed"),
         var("mesh.rampTime", P_RAMP, Parameter, 0.0, "s", "The mesh force ramps up linearly over this time: r(t) = min(1, t/rampTime) (0: no ramp)"),
+        var("thermal.expansion", P_ALPHA, Parameter, 11.7e-6, "1/K", "Linear thermal expansion coefficient of shaft and cones (steel)"),
+        var(
+            "thermal.radialLength",
+            P_RADIAL_LENGTH,
+            Parameter,
+            0.0,
+            "m",
+            "Sum over the two bearings of cone raceway radius / tan(contact angle): the cones' radial growth as axial interference (0: the axial growth of the shaft only)",
+        ),
+        var(
+            "thermal.deltaT",
+            IN_DELTA_T,
+            Input,
+            0.0,
+            "K",
+            "Shaft minus housing temperature: preload interference delta + thermal.expansion * deltaT * (thermal.radialLength - (bearingB.position - bearingA.position))",
+        ),
     ];
     for (bearing, base) in [("bearingA", IN_A), ("bearingB", IN_B)] {
         for (k, r) in REACTION.iter().enumerate() {
@@ -157,7 +178,7 @@ pub fn variables() -> Vec<Var> {
         Output,
         0.0,
         "1",
-        "|residual| / |applied load|, moments divided by the bearing span",
+        "|residual| / |applied load|, moments divided by the bearing span (without an applied load: relative to the larger bearing reaction)",
     ));
     v
 }
