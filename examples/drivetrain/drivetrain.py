@@ -59,6 +59,8 @@ SHAFT_PARAMETERS = {
     "shaft.speed": 300.0,
     "thermal.expansion": 11.7e-6,
     "thermal.radialLength": 0.0,
+    "maxStep.translation": 20e-6,
+    "maxStep.tilt": 5e-4,
 }
 
 

@@ -134,3 +134,22 @@ def test_thermal_preload_and_speed(fmus):
     assert a_warm[0] < 0.6 * a_cold[0]
     fast = run(fmus, shaft_parameters=dict(p, **{"shaft.speed": 600.0}), stop=0.03, step=0.01)
     assert fast["reactions"][-1][0][0] > a_cold[0]
+
+
+def test_fmpy_ssp_master_runs_the_ssp(fmus, tmp_path):
+    """fmpy's SSP master (Jacobi, every connection starting at 0) on the same .ssp: after a
+    start-up transient of a few steps, the equilibrium of the load one step back, as the
+    Gauss-Seidel loop, to 1e-5 of the load."""
+    import ssp
+
+    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=fmus[0], shaft_fmu=fmus[1])
+    fs = ssp.run_fmpy(package, stop=1.0, step=0.002)
+    fm = run(fmus, stop=1.0, step=0.002)
+    np.testing.assert_allclose(fs["time"], fm["time"], rtol=0, atol=1e-12)
+    p = dict(dt.SHAFT_PARAMETERS)
+    worst = 0.0
+    for j in range(10, len(fm["time"])):
+        s = scale(p, fm["time"][j - 1])
+        for i in range(2):
+            worst = max(worst, (np.abs(fs["reactions"][j][i] - fm["reactions"][j - 1][i]) / s).max())
+    assert worst <= 1e-5, f"fmpy's SSP master and the Gauss-Seidel loop differ by {worst:.3e} of the load"

@@ -104,6 +104,7 @@ impl Instance {
             frequency: p(P_MESH_FREQ),
             ramp: p(P_RAMP),
             relaxation: p(P_RELAX),
+            max_step: [p(P_MAX_TRANSLATION), p(P_MAX_TILT)],
         }
     }
 
@@ -163,6 +164,9 @@ impl Instance {
         }
         if !(s.relaxation > 0.0 && s.relaxation <= 1.0) {
             return Err(format!("relaxation = {} must be in (0, 1]", s.relaxation));
+        }
+        if !(s.max_step[0] > 0.0 && s.max_step[1] > 0.0) {
+            return Err("maxStep.translation and maxStep.tilt must be > 0".into());
         }
         if s.ramp < 0.0 || s.frequency < 0.0 {
             return Err("mesh.rampTime and mesh.frequency must be >= 0".into());

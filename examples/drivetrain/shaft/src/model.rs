@@ -19,7 +19,8 @@
 //! Equilibrium: Q_F − Σ T_iᵀ R_i(d_i) = 0. Every step the shaft takes one Newton step from
 //! the state the bearing inputs belong to (q rebuilt from the bearings' echoed cone
 //! displacements, so that the update is a true Newton step whatever the master's order):
-//! q⁺ = q + ω K⁻¹ (Q_F(t + h) − Σ T_iᵀ R_i), K = Σ T_iᵀ K_i T_i.
+//! q⁺ = q + ω K⁻¹ (Q_F(t + h) − Σ T_iᵀ R_i), K = Σ T_iᵀ K_i T_i, ω ≤ `relaxation` so that no
+//! bearing input moves by more than `max_step` in one step (a trust region).
 
 /// A 5-vector.
 pub type V5 = [f64; 5];
@@ -45,6 +46,10 @@ pub struct Shaft {
     pub ramp: f64,
     /// Fraction of the Newton step taken.
     pub relaxation: f64,
+    /// Largest change per step of a bearing's translation (m) and tilt (rad): a trust region
+    /// that keeps a step from a poor linearisation (an unloaded bearing's near-zero
+    /// stiffness, e.g. when a master starts with zero inputs) inside the bearings' range.
+    pub max_step: [f64; 2],
 }
 
 /// Mirror sign σ of bearing `i` (0 = A, 1 = B).
@@ -149,9 +154,16 @@ impl Shaft {
     pub fn newton(&self, q: &V5, t_target: f64, reactions: &[V5; 2], k: &[M5; 2]) -> Option<V5> {
         let r = self.residual(t_target, reactions);
         let dq = solve(self.stiffness(k), r)?;
+        let mut factor = self.relaxation;
+        for i in 0..2 {
+            let dd = mat_vec(&self.t(i), &dq);
+            let translation = dd[..3].iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+            let tilt = dd[3..].iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+            factor = factor.min(self.max_step[0] / translation).min(self.max_step[1] / tilt);
+        }
         let mut out = *q;
         for m in 0..5 {
-            out[m] += self.relaxation * dq[m];
+            out[m] += factor * dq[m];
         }
         Some(out)
     }
@@ -223,6 +235,7 @@ mod tests {
             frequency: 1.0,
             ramp: 0.0,
             relaxation: 1.0,
+            max_step: [1e-3, 1e-2],
         }
     }
 
@@ -270,6 +283,22 @@ mod tests {
         assert_eq!(a[4], -b[4]);
         assert_eq!(a[1], 2e-6 - 0.15 * 2e-4);
         assert_eq!(b[1], 2e-6 + 0.15 * 2e-4);
+    }
+
+    /// A step larger than the trust region is scaled down as a whole (same direction).
+    #[test]
+    fn trust_region_limits_the_step() {
+        let mut s = shaft();
+        s.max_step = [1e-6, 1e-2];
+        let mut k = [[[0.0; 5]; 5]; 2];
+        for ki in k.iter_mut() {
+            for m in 0..5 {
+                ki[m][m] = 1e6;
+            }
+        }
+        let q = s.newton(&[0.0; 5], 0.0, &[[0.0; 5]; 2], &k).unwrap();
+        let largest = (0..2).flat_map(|i| mat_vec(&s.t(i), &q)[..3].to_vec()).fold(0.0_f64, |a, x| a.max(x.abs()));
+        assert!((largest - 1e-6).abs() < 1e-18, "{largest}");
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The shaft FMU's variables: one table, read by the FMU (value references, start values,
 //! what may be set when) and by the packager (modelDescription.xml). All variables are Real.
 //!
-//! Value references: parameters 0..15, the temperature input 90, bearing A's inputs 100..132, bearing B's 200..232,
+//! Value references: parameters 0..17, the temperature input 90, bearing A's inputs 100..132, bearing B's 200..232,
 //! outputs 300..335.
 
 /// FMI causality of a variable.
@@ -40,6 +40,8 @@ pub const P_SPEED: u32 = 11;
 pub const P_RAMP: u32 = 12;
 pub const P_ALPHA: u32 = 13;
 pub const P_RADIAL_LENGTH: u32 = 14;
+pub const P_MAX_TRANSLATION: u32 = 15;
+pub const P_MAX_TILT: u32 = 16;
 /// Input: shaft minus housing temperature.
 pub const IN_DELTA_T: u32 = 90;
 
@@ -99,6 +101,8 @@ pub fn variables() -> Vec<Var> {
             "m",
             "Sum over the two bearings of cone raceway radius / tan(contact angle): the cones' radial growth as axial interference (0: the axial growth of the shaft only)",
         ),
+        var("maxStep.translation", P_MAX_TRANSLATION, Parameter, 20e-6, "m", "Trust region: largest change of a bearing's translation per communication step"),
+        var("maxStep.tilt", P_MAX_TILT, Parameter, 5e-4, "rad", "Trust region: largest change of a bearing's tilt per communication step"),
         var(
             "thermal.deltaT",
             IN_DELTA_T,
