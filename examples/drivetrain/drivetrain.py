@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import shutil
 import subprocess
 import time
 from dataclasses import dataclass, field

@@ -10,7 +10,6 @@ instances of the bearing FMU in an O arrangement, co-simulated with fmpy.
 
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -65,7 +65,18 @@ impl Instance {
             kind[v.vr as usize] = Some(v.causality);
         }
         let start = values.clone();
-        let mut i = Instance { magic: MAGIC, name, callbacks, logging, state: State::Instantiated, values, kind, start, q: [0.0; 5], time: 0.0 };
+        let mut i = Instance {
+            magic: MAGIC,
+            name,
+            callbacks,
+            logging,
+            state: State::Instantiated,
+            values,
+            kind,
+            start,
+            q: [0.0; 5],
+            time: 0.0,
+        };
         i.write_outputs(0.0, None);
         i
     }
@@ -78,7 +89,16 @@ impl Instance {
             let msg = CString::new(message.replace('\0', " ")).unwrap_or_default();
             let category = if status >= ERROR { c"logStatusError" } else { c"logEvents" };
             // SAFETY: the importer's logger, called with a "%s" format and one string.
-            unsafe { logger(self.callbacks.env, self.name.as_ptr(), status, category.as_ptr(), c"%s".as_ptr(), msg.as_ptr()) };
+            unsafe {
+                logger(
+                    self.callbacks.env,
+                    self.name.as_ptr(),
+                    status,
+                    category.as_ptr(),
+                    c"%s".as_ptr(),
+                    msg.as_ptr(),
+                )
+            };
         }
     }
 
@@ -155,12 +175,18 @@ impl Instance {
 
     fn check_parameters(&self) -> Result<(), String> {
         let s = self.shaft();
-        let finite = variables().iter().filter(|v| v.causality == Causality::Parameter).all(|v| self.values[v.vr as usize].is_finite());
+        let finite = variables()
+            .iter()
+            .filter(|v| v.causality == Causality::Parameter)
+            .all(|v| self.values[v.vr as usize].is_finite());
         if !finite {
             return Err("a parameter is not finite".into());
         }
         if s.pos[1] <= s.pos[0] {
-            return Err(format!("bearingB.position ({}) must be greater than bearingA.position ({})", s.pos[1], s.pos[0]));
+            return Err(format!(
+                "bearingB.position ({}) must be greater than bearingA.position ({})",
+                s.pos[1], s.pos[0]
+            ));
         }
         if !(s.relaxation > 0.0 && s.relaxation <= 1.0) {
             return Err(format!("relaxation = {} must be in (0, 1]", s.relaxation));
@@ -238,7 +264,10 @@ impl Instance {
                 OK
             }
             _ => {
-                self.log(WARNING, &format!("fmi2DoStep at t = {t}: the bearings' stiffness is singular (unloaded?): shaft held"));
+                self.log(
+                    WARNING,
+                    &format!("fmi2DoStep at t = {t}: the bearings' stiffness is singular (unloaded?): shaft held"),
+                );
                 WARNING
             }
         };
@@ -304,7 +333,11 @@ pub unsafe extern "C" fn fmi2Instantiate(
     }
     let callbacks = unsafe { *functions };
     let r = catch_unwind(AssertUnwindSafe(|| {
-        let name = if name.is_null() { c"shaft".to_owned() } else { unsafe { CStr::from_ptr(name) }.to_owned() };
+        let name = if name.is_null() {
+            c"shaft".to_owned()
+        } else {
+            unsafe { CStr::from_ptr(name) }.to_owned()
+        };
         let inst = Instance::new(name, callbacks, logging_on != 0);
         if kind != 1 {
             inst.log(ERROR, "fmi2Instantiate: only Co-Simulation (fmi2CoSimulation) is supported");
@@ -343,7 +376,14 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(c: *mut c_void, on: c_int, _n: usiz
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetupExperiment(c: *mut c_void, _tol_defined: c_int, _tol: f64, start: f64, _stop_defined: c_int, _stop: f64) -> Status {
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: *mut c_void,
+    _tol_defined: c_int,
+    _tol: f64,
+    start: f64,
+    _stop_defined: c_int,
+    _stop: f64,
+) -> Status {
     unsafe {
         with(c, |i| {
             if i.state != State::Instantiated {
@@ -402,7 +442,11 @@ pub unsafe extern "C" fn fmi2GetReal(c: *mut c_void, vr: *const c_uint, n: usize
     unsafe {
         with(c, |i| match (slice(vr, n), (n == 0 || !value.is_null())) {
             (Some(vr), true) => {
-                let out = if n == 0 { &mut [][..] } else { std::slice::from_raw_parts_mut(value, n) };
+                let out = if n == 0 {
+                    &mut [][..]
+                } else {
+                    std::slice::from_raw_parts_mut(value, n)
+                };
                 i.get_real(vr, out)
             }
             _ => i.fail("fmi2GetReal: NULL array"),
@@ -505,11 +549,23 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     unsafe { unsupported(c, "fmi2GetDirectionalDerivative") }
 }
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: *mut c_void, _vr: *const c_uint, _n: usize, _o: *const c_int, _v: *const f64) -> Status {
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+    c: *mut c_void,
+    _vr: *const c_uint,
+    _n: usize,
+    _o: *const c_int,
+    _v: *const f64,
+) -> Status {
     unsafe { unsupported(c, "fmi2SetRealInputDerivatives") }
 }
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: *mut c_void, _vr: *const c_uint, _n: usize, _o: *const c_int, _v: *mut f64) -> Status {
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+    c: *mut c_void,
+    _vr: *const c_uint,
+    _n: usize,
+    _o: *const c_int,
+    _v: *mut f64,
+) -> Status {
     unsafe { unsupported(c, "fmi2GetRealOutputDerivatives") }
 }
 

@@ -297,7 +297,9 @@ mod tests {
             }
         }
         let q = s.newton(&[0.0; 5], 0.0, &[[0.0; 5]; 2], &k).unwrap();
-        let largest = (0..2).flat_map(|i| mat_vec(&s.t(i), &q)[..3].to_vec()).fold(0.0_f64, |a, x| a.max(x.abs()));
+        let largest = (0..2)
+            .flat_map(|i| mat_vec(&s.t(i), &q)[..3].to_vec())
+            .fold(0.0_f64, |a, x| a.max(x.abs()));
         assert!((largest - 1e-6).abs() < 1e-18, "{largest}");
     }
 

@@ -5,7 +5,10 @@ use crate::variables::{variables, Causality};
 use std::fmt::Write;
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// The model description (FMI 2.0, Co-Simulation, model identifier `Shaft`).
@@ -44,7 +47,11 @@ pub fn model_description() -> String {
             v.vr,
             escape(&v.description)
         );
-        let unit = if v.unit == "1" { String::new() } else { format!(" unit=\"{}\"", escape(v.unit)) };
+        let unit = if v.unit == "1" {
+            String::new()
+        } else {
+            format!(" unit=\"{}\"", escape(v.unit))
+        };
         match start {
             Some(s) => {
                 let _ = writeln!(x, "      <Real{unit} start=\"{s:?}\"/>");

@@ -72,7 +72,14 @@ const REACTION: [&str; 5] = ["Fx", "Fy", "Fz", "My", "Mz"];
 const REACTION_UNIT: [&str; 5] = ["N", "N", "N", "N.m", "N.m"];
 
 fn var(name: impl Into<String>, vr: u32, causality: Causality, start: f64, unit: &'static str, description: impl Into<String>) -> Var {
-    Var { name: name.into(), vr, causality, start, unit, description: description.into() }
+    Var {
+        name: name.into(),
+        vr,
+        causality,
+        start,
+        unit,
+        description: description.into(),
+    }
 }
 
 /// The table, in modelDescription order.
@@ -137,7 +144,13 @@ pub fn variables() -> Vec<Var> {
                     Input,
                     0.0,
                     unit,
-                    format!("d(reaction.{})/d({}) of {bearing} in its own frame (its output stiffness[{},{}])", REACTION[i], DOF[j], i + 1, j + 1),
+                    format!(
+                        "d(reaction.{})/d({}) of {bearing} in its own frame (its output stiffness[{},{}])",
+                        REACTION[i],
+                        DOF[j],
+                        i + 1,
+                        j + 1
+                    ),
                 ));
             }
         }
@@ -154,14 +167,39 @@ pub fn variables() -> Vec<Var> {
     }
     for (bearing, base) in [("bearingA", OUT_A), ("bearingB", OUT_B)] {
         for (k, d) in DOF.iter().enumerate() {
-            let name = if k < 3 { format!("{bearing}.displacement.{d}") } else { format!("{bearing}.{d}") };
-            v.push(var(name, base + k as u32, Output, 0.0, DOF_UNIT[k], format!("Input {d} of {bearing} in its own frame")));
+            let name = if k < 3 {
+                format!("{bearing}.displacement.{d}")
+            } else {
+                format!("{bearing}.{d}")
+            };
+            v.push(var(
+                name,
+                base + k as u32,
+                Output,
+                0.0,
+                DOF_UNIT[k],
+                format!("Input {d} of {bearing} in its own frame"),
+            ));
         }
     }
     for (k, c) in ["Fx", "Fy", "Fz"].iter().enumerate() {
-        v.push(var(format!("mesh.{c}"), OUT_MESH + k as u32, Output, 0.0, "N", format!("Mesh force {c} on the shaft now (at the end of the step)")));
+        v.push(var(
+            format!("mesh.{c}"),
+            OUT_MESH + k as u32,
+            Output,
+            0.0,
+            "N",
+            format!("Mesh force {c} on the shaft now (at the end of the step)"),
+        ));
     }
-    v.push(var("torque", OUT_TORQUE, Output, 0.0, "N.m", "Torque of the mesh force about the shaft axis, mesh.radius * mesh.Fz"));
+    v.push(var(
+        "torque",
+        OUT_TORQUE,
+        Output,
+        0.0,
+        "N.m",
+        "Torque of the mesh force about the shaft axis, mesh.radius * mesh.Fz",
+    ));
     for (k, r) in REACTION.iter().enumerate() {
         v.push(var(
             format!("residual.{r}"),
@@ -172,10 +210,27 @@ pub fn variables() -> Vec<Var> {
             format!("Shaft equilibrium residual {r} (applied load minus bearing reactions, about X = 0) at the state the bearing inputs belong to"),
         ));
     }
-    for (k, (q, unit)) in [("u", "m"), ("v", "m"), ("w", "m"), ("thetaY", "rad"), ("thetaZ", "rad")].iter().enumerate() {
-        v.push(var(format!("shaft.{q}"), OUT_Q + k as u32, Output, 0.0, unit, format!("Shaft displacement {q} at X = 0")));
+    for (k, (q, unit)) in [("u", "m"), ("v", "m"), ("w", "m"), ("thetaY", "rad"), ("thetaZ", "rad")]
+        .iter()
+        .enumerate()
+    {
+        v.push(var(
+            format!("shaft.{q}"),
+            OUT_Q + k as u32,
+            Output,
+            0.0,
+            unit,
+            format!("Shaft displacement {q} at X = 0"),
+        ));
     }
-    v.push(var("speed", OUT_SPEED, Output, 0.0, "rad/s", "Shaft speed (shaft.speed), for the bearings' speed inputs"));
+    v.push(var(
+        "speed",
+        OUT_SPEED,
+        Output,
+        0.0,
+        "rad/s",
+        "Shaft speed (shaft.speed), for the bearings' speed inputs",
+    ));
     v.push(var(
         "residual.relative",
         OUT_RESIDUAL_REL,

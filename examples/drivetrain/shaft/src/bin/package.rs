@@ -25,7 +25,8 @@ fn run() -> Result<(), String> {
         ("linux64", "libshaft.so", "so")
     };
     let lib_path = dir.join(lib);
-    let binary = std::fs::read(&lib_path).map_err(|e| format!("{}: {e} (build the library first: cargo build --release)", lib_path.display()))?;
+    let binary =
+        std::fs::read(&lib_path).map_err(|e| format!("{}: {e} (build the library first: cargo build --release)", lib_path.display()))?;
     let out = match std::env::args_os().nth(1) {
         Some(p) => PathBuf::from(p),
         None => dir.parent().ok_or("no target directory")?.join("fmu").join("Shaft.fmu"),
@@ -38,7 +39,8 @@ fn run() -> Result<(), String> {
     let opts = SimpleFileOptions::default().compression_method(CompressionMethod::Deflated);
     let err = |e: zip::result::ZipError| format!("{}: {e}", out.display());
     zip.start_file("modelDescription.xml", opts).map_err(err)?;
-    zip.write_all(shaft::model_description::model_description().as_bytes()).map_err(|e| e.to_string())?;
+    zip.write_all(shaft::model_description::model_description().as_bytes())
+        .map_err(|e| e.to_string())?;
     zip.start_file(format!("binaries/{platform}/Shaft.{ext}"), opts).map_err(err)?;
     zip.write_all(&binary).map_err(|e| e.to_string())?;
     zip.finish().map_err(err)?;
