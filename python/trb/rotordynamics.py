@@ -5,7 +5,8 @@
   one fresh instance per operating point (initialization solves the quasi-static equilibrium).
 - `ross_bearing(n, K, speeds, damping)`: a `ross.BearingElement` from those matrices. Axes:
   ROSS's shaft axis is its z, so FMU (x, y, z) -> ROSS (z, x, y) (a cyclic permutation, both
-  right-handed): ROSS kxx = K[y,y], kyy = K[z,z], kxy = K[y,z], kyx = K[z,y], kzz = K[x,x] (axial).
+  right-handed): ROSS kxx = K[y,y], kyy = K[z,z], kxy = K[y,z], kyx = K[z,y]. The axial stiffness K[x,x]
+  has no place in ROSS 1.5's 2 x 2 bearing element (its rotor has no axial degree of freedom).
   The tilt rows/columns (xi, zeta) and the radial-axial and radial-tilt couplings are dropped:
   a ROSS bearing element is a 3x3 (x, y, z) translational spring and damper, no moment stiffness.
   Our stiffness has no damping: `damping` (N s/m, the same in x and y) is the documented choice.
@@ -74,7 +75,7 @@ def ross_bearing(n: int, K: np.ndarray, speeds, damping: float = 0.0, tag: str |
     """A ROSS BearingElement at node `n` from the FMU stiffness K (len(speeds), 5, 5).
 
     Speed-dependent coefficients over `speeds` (rad/s; ROSS interpolates them in speed). Only the
-    radial block and the axial diagonal are used (see the module docstring for the axes).
+    radial block is used (see the module docstring for the axes).
     """
     import ross as rs
 
@@ -87,7 +88,6 @@ def ross_bearing(n: int, K: np.ndarray, speeds, damping: float = 0.0, tag: str |
         kyy=K[:, Z, Z],
         kxy=K[:, Y, Z],
         kyx=K[:, Z, Y],
-        kzz=K[:, X, X],
         cxx=c,
         cyy=c,
         frequency=freq,
@@ -158,16 +158,18 @@ def critical_speeds(speeds, wn) -> list[tuple[float, int]]:
     return sorted(found)
 
 
-def gravity_sag(rotor) -> tuple[np.ndarray, np.ndarray]:
+def gravity_sag(rotor, g: float = 9.80665) -> tuple[np.ndarray, np.ndarray]:
     """Static lateral deflection under gravity (-y) on the elastic bearings at speed 0:
-    (y displacement per node (m), bearing force per bearing (N, +y on the shaft) = -kyy u_y)."""
-    from ross.utils import remove_dofs
-
-    K = remove_dofs(rotor.K(0))
-    M = remove_dofs(rotor.M(0))
-    w = np.asarray(rotor.gravitational_force(M=M, num_dof=4)).ravel()
-    u = np.linalg.solve(K, w)
-    uy = u[1::4]
+    (y displacement per node (m), bearing force per bearing (N, +y on the shaft) = -kyy u_y).
+    Solved from the rotor's own matrices, K(0) u = M a_g with a_g = -g on every node's y
+    translation (ROSS 1.5: 4 degrees of freedom per node, x, y and the two rotations)."""
+    dof = rotor.number_dof
+    K = np.asarray(rotor.K(0))
+    M = np.asarray(rotor.M())
+    a = np.zeros(K.shape[0])
+    a[1::dof] = -g
+    u = np.linalg.solve(K, M @ a)
+    uy = u[1::dof]
     forces = np.array([-float(b.kyy_interpolated(0.0)) * uy[b.n] for b in rotor.bearing_elements])
     return uy, forces
 

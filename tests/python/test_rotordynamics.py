@@ -59,7 +59,7 @@ def test_fmu_stiffness_is_a_usable_bearing_matrix(stiffness):
 
 
 def test_mapping_to_ross_axes(stiffness):
-    """FMU (x, y, z) -> ROSS (z, x, y): ROSS kxx = K[y,y], kyy = K[z,z], kzz = K[x,x]."""
+    """FMU (y, z) -> ROSS (x, y): ROSS kxx = K[y,y], kyy = K[z,z] (ROSS 1.5 has no axial bearing stiffness)."""
     _, Ks = stiffness
     K = Ks[15e3].copy()
     K[:, 1, 1] *= 1.5  # make y and z distinguishable
@@ -67,7 +67,7 @@ def test_mapping_to_ross_axes(stiffness):
     Kr = b.K(SPEEDS[1])
     assert Kr[0, 0] == pytest.approx(K[1, 1, 1], rel=1e-9)
     assert Kr[1, 1] == pytest.approx(K[1, 2, 2], rel=1e-9)
-    assert Kr[2, 2] == pytest.approx(K[1, 0, 0], rel=1e-9)
+    assert Kr.shape == (2, 2)
     assert Kr[0, 1] == pytest.approx(K[1, 1, 2], abs=1e-9 * K[1, 1, 1])
 
 
