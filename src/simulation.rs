@@ -89,6 +89,8 @@ pub struct Simulation {
     model: Option<Model>,
     /// The oil temperature the model's viscosity was set for.
     model_oil_temperature: f64,
+    /// The stiffness outputs are not yet those of the current state (`refresh_stiffness`).
+    stiffness_stale: bool,
     /// The solve for the current inputs and parameters failed with this error: reading
     /// outputs again returns it instead of solving again (cleared by any change).
     failure: Option<ModelError>,
@@ -134,6 +136,7 @@ impl Simulation {
             },
             model: None,
             model_oil_temperature: f64::NAN,
+            stiffness_stale: false,
             failure: None,
             backup: Outputs::new(z),
         }
@@ -204,7 +207,25 @@ impl Simulation {
     /// Outputs now, solving first if inputs changed.
     pub fn outputs(&mut self) -> Result<&Outputs, ModelError> {
         self.solve_if_dirty()?;
+        self.refresh_stiffness();
         Ok(&self.state.outputs)
+    }
+
+    /// The stiffness outputs where a quasi-static linearisation gives them (fidelity 1, the
+    /// skew model): computed when first read after a solve, since each costs a quasi-static
+    /// solve (about 1 ms) that a run which never reads them should not pay.
+    fn refresh_stiffness(&mut self) {
+        if !self.stiffness_stale || self.ensure_model().is_err() {
+            return;
+        }
+        let st = &mut self.state;
+        match self.model.as_mut() {
+            Some(Model::QuasiStatic { linear: Some(linear), .. }) | Some(Model::Dynamic { linear, .. }) => {
+                linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
+            }
+            _ => {}
+        }
+        self.stiffness_stale = false;
     }
 
     /// Kinetic energy stored in the moving bodies (J): the dynamic model's rollers, cage and
@@ -279,12 +300,10 @@ impl Simulation {
                 for j in 0..z {
                     st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
                 }
-                if let Some(linear) = linear {
-                    linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
-                }
+                self.stiffness_stale = linear.is_some();
                 report
             }
-            Model::Dynamic { qs, dynamic, linear } => {
+            Model::Dynamic { qs, dynamic, .. } => {
                 let mut report = st.report;
                 if st.dynamic.is_none() {
                     // Start from the quasi-static solution (seated rollers, epicyclic speeds).
@@ -292,7 +311,7 @@ impl Simulation {
                     st.dynamic = Some(dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time));
                 }
                 dynamic.write_outputs(st.dynamic.as_ref().expect("dynamic state"), &st.inputs, &mut st.outputs);
-                linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
+                self.stiffness_stale = true;
                 report
             }
         };
@@ -335,6 +354,9 @@ impl Simulation {
     pub fn get_real(&mut self, vr: u32) -> Result<f64, AccessError> {
         if self.causality(vr) == Some(Causality::Output) {
             self.solve_if_dirty().map_err(AccessError::Model)?;
+            if (var::STIFFNESS_1_1..=var::STIFFNESS_5_5).contains(&vr) {
+                self.refresh_stiffness();
+            }
         }
         self.last_real(vr)
     }
@@ -684,6 +706,8 @@ impl Simulation {
         if !same_params {
             self.model = None;
         }
+        // a linearised stiffness is recomputed from the restored state when read
+        self.stiffness_stale = true;
         Ok(())
     }
 }

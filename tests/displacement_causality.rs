@@ -386,3 +386,28 @@ fn in_force_causality_the_stiffness_predicts_the_compliance() {
         );
     }
 }
+
+#[test]
+fn the_linearised_stiffness_is_computed_when_read_and_restores_bit_for_bit() {
+    let mut d = element("TRB130x230", false, 1);
+    d.set_integer(var::INTEGRATOR, 2).unwrap();
+    d.set_real(var::TOLERANCE, 1e-4).unwrap();
+    d.set_real(var::FY, 15e3).unwrap();
+    d.initialize(0.0).unwrap();
+    let h = 5e-4;
+    for k in 0..4 {
+        d.do_step(k as f64 * h, h).unwrap();
+    }
+    let saved = d.serialize_state();
+    let mut first = Vec::new();
+    for k in 4..8 {
+        d.do_step(k as f64 * h, h).unwrap();
+        first.push(d.get_real(var::STIFFNESS_2_2).unwrap());
+    }
+    assert!(first.iter().all(|k| *k > 1e9), "{first:?}");
+    d.deserialize_state(&saved).unwrap();
+    for (i, k) in (4..8).enumerate() {
+        d.do_step(k as f64 * h, h).unwrap();
+        assert_eq!(d.get_real(var::STIFFNESS_2_2).unwrap().to_bits(), first[i].to_bits(), "step {k}");
+    }
+}
