@@ -52,9 +52,11 @@ class Counter:
     """A wrapper around the trb program that logs each `simulate` of a case it runs: the md5
     of the scenario file (the case), the parent pid (the Dask worker process) and its own pid.
     The one-step check of the first case before a sweep (trb.spec.check_scenario, in a
-    directory trb-sweep-check-*) is not a case and is not logged."""
+    directory trb-sweep-check-*) is not a case and is not logged. With `delay` (s) every case
+    takes at least that long (a sleep before the program), so the tests that kill a sweep or a
+    worker mid-way find one in the middle on a fast machine as on a slow one."""
 
-    def __init__(self, directory: Path, real: Path):
+    def __init__(self, directory: Path, real: Path, delay: float = 0.0):
         self.log = directory / "runs.log"
         self.path = directory / "trb-counting"
         self.path.write_text(
@@ -62,7 +64,8 @@ class Counter:
             'case "$1 $2" in simulate*trb-sweep-check-*) exec "' + str(real) + '" "$@";; esac\n'
             'if [ "$1" = simulate ]; then\n'
             f'  echo "start $(md5sum < "$2" | cut -c1-32) $PPID $$" >> "{self.log}"\n'
-            "fi\n"
+            + (f"  sleep {delay}\n" if delay > 0 else "")
+            + "fi\n"
             f'"{real}" "$@"\n'
             "rc=$?\n"
             f'[ "$1" = simulate ] && echo "end - $PPID $$" >> "{self.log}"\n'
@@ -318,7 +321,7 @@ def test_scenario_file_and_bearing_file_travel_with_the_task(tmp_path, trb_progr
 def test_rerun_after_a_killed_sweep_runs_only_the_unfinished_cases(tmp_path, trb_program):
     sweep = write_json(tmp_path / "sweep.json", slow_sweep(10))  # 20 cases
     out = tmp_path / "results.parquet"
-    counter = Counter(tmp_path, trb_program)
+    counter = Counter(tmp_path, trb_program, delay=0.3)  # 20 cases on 2 workers: at least 3 s
     cmd = [str(TRB_SWEEP), str(sweep), "--out", str(out), "--workers", "2", "--trb", str(counter.path), "--no-progress"]
     (tmp_path / "tmp").mkdir()  # the killed client's last cases leave their directories here
     env = dict(os.environ, TMPDIR=str(tmp_path / "tmp"))
@@ -369,7 +372,7 @@ def test_killed_worker_loses_no_finished_case(tmp_path, trb_program, process_clu
     pids = client.run(os.getpid)  # worker address: pid
     sweep = write_json(tmp_path / "sweep.json", slow_sweep(10))  # 20 cases
     out = tmp_path / "results.parquet"
-    counter = Counter(tmp_path, trb_program)
+    counter = Counter(tmp_path, trb_program, delay=0.3)  # every case runs at least 0.3 s
     cmd = [str(TRB_SWEEP), str(sweep), "--out", str(out), "--scheduler", cluster.scheduler_address, "--trb", str(counter.path), "--no-progress"]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
