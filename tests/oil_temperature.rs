@@ -3,19 +3,11 @@
 //! temperature, and torque, film and traction follow the viscosity at both fidelities.
 
 use trb::bearing::Bearing;
-use trb::model::Outputs;
 use trb::simulation::Simulation;
 use trb::tribology::OilGrade;
 use trb::variables as var;
 
-fn solve(preset: &str, set: &[(u32, f64)]) -> Outputs {
-    let mut s = Simulation::new(Bearing::preset(preset).unwrap());
-    for &(vr, v) in set {
-        s.set_real(vr, v).unwrap();
-    }
-    s.initialize(0.0).unwrap();
-    s.outputs().unwrap().clone()
-}
+use common::solved as solve;
 
 const C: f64 = 273.15;
 
@@ -136,3 +128,5 @@ fn temperatures_outside_the_law_are_refused() {
     let e = s.initialize(0.0).unwrap_err().to_string();
     assert!(e.contains("oil.nu100"), "{e}");
 }
+
+mod common;

@@ -11,15 +11,7 @@ use trb::rating::{self, BearingRating, RotatingRing};
 use trb::simulation::Simulation;
 use trb::variables as var;
 
-/// Outputs of a quasi-static element of `preset` with the given Real inputs/parameters.
-fn solve(preset: &str, set: &[(u32, f64)]) -> Outputs {
-    let mut s = Simulation::new(Bearing::preset(preset).unwrap());
-    for &(vr, v) in set {
-        s.set_real(vr, v).unwrap();
-    }
-    s.initialize(0.0).unwrap();
-    s.outputs().unwrap().clone()
-}
+use common::solved as solve;
 
 fn hours_at(speed: f64, million_revolutions: f64) -> f64 {
     million_revolutions * 1e6 / (speed * 30.0 / PI * 60.0)

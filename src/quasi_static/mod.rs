@@ -649,11 +649,7 @@ impl QuasiStatic {
             ring[2] = 0.0;
             merit *= z as f64;
         }
-        for c in 0..3 {
-            if self.prescribed[c].is_some() {
-                ring[c] = 0.0;
-            }
-        }
+        self.hold_prescribed_ring(&mut ring);
         for c in 0..3 {
             let v = ring[c];
             max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
@@ -665,6 +661,15 @@ impl QuasiStatic {
         (max_r, merit, f_ref, ring)
     }
 
+    /// No residual on the prescribed cone translations (they are not unknowns).
+    fn hold_prescribed_ring(&self, ring: &mut Vector3<f64>) {
+        for c in 0..3 {
+            if self.prescribed[c].is_some() {
+                ring[c] = 0.0;
+            }
+        }
+    }
+
     /// The ring (cone) residual of [`QuasiStatic::evaluate`] from the current roller
     /// evaluations (not axisymmetric).
     fn ring_residual(&self, _x: &[f64], inputs: &Inputs) -> Vector3<f64> {
@@ -674,11 +679,7 @@ impl QuasiStatic {
             ring[1] += e.f_cone[1] * st.cos_psi;
             ring[2] += e.f_cone[1] * st.sin_psi;
         }
-        for c in 0..3 {
-            if self.prescribed[c].is_some() {
-                ring[c] = 0.0;
-            }
-        }
+        self.hold_prescribed_ring(&mut ring);
         ring
     }
 

@@ -402,11 +402,7 @@ impl QuasiStatic {
             f_ref = f_ref.max(e.qi).max(e.qo);
             evals[j] = e;
         }
-        for c in 0..3 {
-            if self.prescribed[c].is_some() {
-                ring[c] = 0.0;
-            }
-        }
+        self.hold_prescribed_ring(&mut ring);
         for v in ring.iter() {
             max_r = if v.is_finite() { max_r.max(v.abs()) } else { f64::INFINITY };
             merit += v * v;

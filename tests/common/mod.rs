@@ -7,6 +7,7 @@ use trb::variables as var;
 /// The default bearing ([W25] case: 3500 rpm, Fa 30 kN) at fidelity 1 with radial load `fy`,
 /// integrated by `integrator` with `setting` as its tolerance (0, 2) or fixed step `maxStep`
 /// (1), initialized at t = 0.
+#[allow(dead_code)] // not every test file that includes `common` uses it
 pub fn dynamic_element(integrator: i32, setting: f64, fy: f64) -> Simulation {
     let mut s = Simulation::new(Bearing::default_preset());
     s.set_integer(var::FIDELITY, 1).unwrap();
@@ -19,4 +20,16 @@ pub fn dynamic_element(integrator: i32, setting: f64, fy: f64) -> Simulation {
     s.set_real(var::FY, fy).unwrap();
     s.initialize(0.0).unwrap();
     s
+}
+
+/// Outputs of a quasi-static element of `preset` initialized with the given Real inputs and
+/// parameters (value reference, value).
+#[allow(dead_code)] // not every test file that includes `common` uses it
+pub fn solved(preset: &str, set: &[(u32, f64)]) -> trb::model::Outputs {
+    let mut s = Simulation::new(Bearing::preset(preset).unwrap());
+    for &(vr, v) in set {
+        s.set_real(vr, v).unwrap();
+    }
+    s.initialize(0.0).unwrap();
+    s.outputs().unwrap().clone()
 }
