@@ -399,10 +399,17 @@ impl Inputs {
         self.speed - self.cup_speed
     }
 
+    /// Reject NaN/inf, values outside the model's range and combinations the parameters `p`
+    /// do not support, naming the input.
+    pub fn validate(&self, b: &Bearing, p: &Parameters) -> Result<(), ModelError> {
+        self.validate_ranges(b)?;
+        self.validate_with(p)
+    }
+
     /// Reject input combinations the parameters do not support: a turning cup with a lobed
     /// raceway (the lobes are modelled fixed in space; turning with the cup they would sweep
     /// past the rollers, which neither model follows).
-    pub fn validate_with(&self, p: &Parameters) -> Result<(), ModelError> {
+    fn validate_with(&self, p: &Parameters) -> Result<(), ModelError> {
         if self.cup_speed != 0.0 && p.outer_lobes > 0 && p.outer_waveform > 0.0 {
             return Err(ModelError::InvalidInput {
                 name: "cupSpeed",
@@ -416,7 +423,7 @@ impl Inputs {
     }
 
     /// Reject NaN/inf and values outside the model's range, naming the input.
-    pub fn validate(&self, b: &Bearing) -> Result<(), ModelError> {
+    fn validate_ranges(&self, b: &Bearing) -> Result<(), ModelError> {
         let named = [
             ("speed", self.speed),
             ("xi", self.xi),

@@ -182,8 +182,7 @@ impl Simulation {
     /// The caller (FMI adapter) checks that `t` matches the current time.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.failure = None;
-        self.state.inputs.validate(&self.bearing)?;
-        self.state.inputs.validate_with(&self.state.params)?;
+        self.state.inputs.validate(&self.bearing, &self.state.params)?;
         self.ensure_model()?;
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
             self.solve_if_dirty()?;
@@ -288,8 +287,7 @@ impl Simulation {
     }
 
     fn solve_now(&mut self) -> Result<SolveReport, ModelError> {
-        self.state.inputs.validate(&self.bearing)?;
-        self.state.inputs.validate_with(&self.state.params)?;
+        self.state.inputs.validate(&self.bearing, &self.state.params)?;
         self.ensure_model()?;
         let z = self.bearing.roller_count;
         self.backup.copy_from(&self.state.outputs);

@@ -161,18 +161,18 @@ fn at_fidelity_1_the_cone_follows_the_prescribed_displacements() {
 }
 
 /// Central finite differences of the reactions in displacement causality about `q0`
-/// (x, y, z, xi, zeta), steps `h` (m, rad).
-fn fd_stiffness(preset: &str, q0: [f64; 5], h: [f64; 5], extra: &[(u32, f64)]) -> [f64; 25] {
+/// (x, y, z, xi, zeta), steps `h` (m, rad), of elements that `configure` sets up beyond that.
+fn fd_stiffness(preset: &str, q0: [f64; 5], h: [f64; 5], configure: impl Fn(&mut Simulation)) -> [f64; 25] {
     let inputs = [var::DISPLACEMENT_X, var::DISPLACEMENT_Y, var::DISPLACEMENT_Z, var::XI, var::ZETA];
     let mut k = [0.0; 25];
     for c in 0..5 {
         let mut r = [[0.0; 5]; 2];
         for (side, sign) in [1.0, -1.0].iter().enumerate() {
-            let mut set: Vec<(u32, f64)> = extra.to_vec();
-            for i in 0..5 {
-                set.push((inputs[i], q0[i] + if i == c { sign * h[c] } else { 0.0 }));
-            }
+            let set: Vec<(u32, f64)> = (0..5)
+                .map(|i| (inputs[i], q0[i] + if i == c { sign * h[c] } else { 0.0 }))
+                .collect();
             let mut d = element(preset, true, 0);
+            configure(&mut d);
             let o = solve(&mut d, &set);
             r[side] = [o.reaction_fx, o.reaction_fy, o.reaction_fz, o.reaction_my, o.reaction_mz];
         }
@@ -225,7 +225,7 @@ fn the_stiffness_matrix_is_the_derivative_of_the_reactions() {
             &[(var::FX, fx), (var::FY, fy), (var::FZ, fz), (var::XI, xi), (var::ZETA, zeta)],
         );
         let q0 = [of.cone_x, of.cone_y, of.cone_z, xi, zeta];
-        let fd = fd_stiffness(preset, q0, [2e-9, 2e-9, 2e-9, 2e-7, 2e-7], &[]);
+        let fd = fd_stiffness(preset, q0, [2e-9, 2e-9, 2e-9, 2e-7, 2e-7], |_| {});
         let radius = 0.5 * Bearing::preset(preset).unwrap().pitch_diameter;
         assert_stiffness_close(&format!("{preset} (force causality solution)"), &of.stiffness, &fd, 1e-3, radius);
         let mut d = element(preset, true, 0);
@@ -273,7 +273,9 @@ fn at_fidelity_1_the_stiffness_is_the_quasi_static_linearisation_about_the_curre
         // with roller 1 where the dynamic cage has carried it
         let cage = d.get_real(var::ROLLER_AZIMUTH).unwrap();
         let q0 = [o.cone_x, o.cone_y, o.cone_z, xi, 0.0];
-        let fd = fd_stiffness("TRB130x230", q0, [2e-9, 2e-9, 2e-9, 2e-7, 2e-7], &[(var::CAGE_ANGLE0, cage)]);
+        let fd = fd_stiffness("TRB130x230", q0, [2e-9, 2e-9, 2e-9, 2e-7, 2e-7], |d| {
+            d.set_real(var::CAGE_ANGLE0, cage).unwrap()
+        });
         let radius = 0.5 * Bearing::preset("TRB130x230").unwrap().pitch_diameter;
         assert_stiffness_close(
             &format!("fidelity 1, displacement causality {causality}"),
@@ -301,28 +303,12 @@ fn the_skew_model_stiffness_is_its_in_plane_linearisation() {
     f.set_integer(var::LUBRICATION, 1).unwrap();
     let of = solve(&mut f, &set);
     let q0 = [of.cone_x, of.cone_y, of.cone_z, 0.0, 0.0];
-    let mut k = [0.0; 25];
-    let h = [2e-9, 2e-9, 2e-9, 2e-7, 2e-7];
-    let inputs = [var::DISPLACEMENT_X, var::DISPLACEMENT_Y, var::DISPLACEMENT_Z, var::XI, var::ZETA];
-    for c in 0..5 {
-        let mut r = [[0.0; 5]; 2];
-        for (side, sign) in [1.0, -1.0].iter().enumerate() {
-            let mut d = element("32018X", true, 0);
-            d.set_boolean(var::SKEW_MODEL, true).unwrap();
-            d.set_integer(var::LUBRICATION, 1).unwrap();
-            d.set_real(var::MU, 0.1).unwrap();
-            d.set_real(var::CAGE_POCKET_CLEARANCE, 0.9e-3).unwrap();
-            let mut s = Vec::new();
-            for i in 0..5 {
-                s.push((inputs[i], q0[i] + if i == c { sign * h[c] } else { 0.0 }));
-            }
-            let o = solve(&mut d, &s);
-            r[side] = [o.reaction_fx, o.reaction_fy, o.reaction_fz, o.reaction_my, o.reaction_mz];
-        }
-        for i in 0..5 {
-            k[5 * i + c] = (r[0][i] - r[1][i]) / (2.0 * h[c]);
-        }
-    }
+    let k = fd_stiffness("32018X", q0, [2e-9, 2e-9, 2e-9, 2e-7, 2e-7], |d| {
+        d.set_boolean(var::SKEW_MODEL, true).unwrap();
+        d.set_integer(var::LUBRICATION, 1).unwrap();
+        d.set_real(var::MU, 0.1).unwrap();
+        d.set_real(var::CAGE_POCKET_CLEARANCE, 0.9e-3).unwrap();
+    });
     let radius = 0.5 * Bearing::preset("32018X").unwrap().pitch_diameter;
     assert!(of.stiffness[0] > 0.0);
     assert_stiffness_close("32018X skew model", &of.stiffness, &k, 1e-2, radius);

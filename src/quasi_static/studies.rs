@@ -23,7 +23,7 @@ pub fn solve_case(name: &str, cage_angle: f64, edit: impl FnOnce(&mut Parameters
     let mut i = Inputs::from_bearing(&b);
     edit(&mut p, &mut i);
     p.validate(&b)?;
-    i.validate(&b)?;
+    i.validate(&b, &p)?;
     let mut qs = QuasiStatic::new(&b, &p)?;
     let mut out = Outputs::new(b.roller_count);
     let mut warm = Vec::new();
