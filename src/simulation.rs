@@ -50,7 +50,7 @@ impl std::error::Error for AccessError {}
 /// The physics of the chosen fidelity.
 #[derive(Debug, Clone)]
 enum Model {
-    /// With the skew model, the in-plane linearisation gives the stiffness.
+    /// With the skew model, differences of the skew solve give the stiffness.
     QuasiStatic {
         qs: Box<QuasiStatic>,
         linear: Option<Box<Linearisation>>,
@@ -257,7 +257,7 @@ impl Simulation {
                 Fidelity::QuasiStatic => Model::QuasiStatic {
                     qs,
                     linear: match p.skew_model {
-                        true => Some(Box::new(Linearisation::new(&self.bearing, &p)?)),
+                        true => Some(Box::new(Linearisation::of_skew_model(&self.bearing, &p)?)),
                         false => None,
                     },
                 },
