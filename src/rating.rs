@@ -17,8 +17,9 @@
 //! - ISO/TS 16281:2008, clause 7 (roller bearings): the rings' roller-load ratings
 //!   Q_ci = C_r / (λν 0.378 Z cos α i^(7/9)) [1 + (1.038 ((1−γ)/(1+γ))^(143/108))^(9/2)]^(2/9),
 //!   Q_ce = C_r / (λν 0.364 Z cos α i^(7/9)) [1 + (1.038 ((1−γ)/(1+γ))^(143/108))^(−9/2)]^(2/9)
-//!   (λν divided out: the lamina loads carry the stress concentrations the reduction factor
-//!   stands for), a lamina's share q_c = Q_c (1/n_s)^(7/9); the equivalent lamina load of the
+//!   (λν = 0.83, the standard's eq. (49), divided out: the lamina loads carry the stress
+//!   concentrations the reduction factor stands for; at ISO 281's rating condition the method
+//!   then gives Lundberg–Palmgren's (C_r/(λν F_r))^4, `tests`), a lamina's share q_c = Q_c (1/n_s)^(7/9); the equivalent lamina load of the
 //!   ring that rotates relative to the load q_e = (Σ_j q_jk^4 / Z)^(1/4), of the ring that
 //!   stands q_e = (Σ_j q_jk^4.5 / Z)^(1/4.5); L10r = [Σ_k (q_eik/q_cik)^(9/2) + (q_eek/q_cek)^(9/2)]^(−8/9)
 //!   million revolutions. Its load–life exponent is 4 (scale every lamina load by s: L10r
