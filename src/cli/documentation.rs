@@ -499,11 +499,70 @@ fn write_drivetrain(h: &mut String) {
     let _ = writeln!(
         h,
         "<p>Tools that put the bearing axis on z map this FMU's x to their z and (y, z) to their (x, y). \
-         The stiffness is analytic at fidelity 0 (static condensation of the Newton Jacobian); at \
-         fidelity 1 and with <code>skewModel</code> it is the quasi-static linearisation about the current \
-         cone position. Lives are capped at 1e12 h when the rings do not turn relative to each other or \
-         carry no load.</p>"
+         The stiffness is analytic at fidelity 0 (static condensation of the Newton Jacobian); with \
+         <code>skewModel</code> it is central differences of the skew model's own reactions (computed \
+         when read); at fidelity 1 it is the quasi-static linearisation about the current cone position. \
+         Lives are capped at 1e12 h when the rings do not turn relative to each other or carry no \
+         load.</p>"
     );
+    write_tool_names(h);
+}
+
+/// The names and conventions of two bearing-analysis tools users compare with, from their own
+/// public documentation (MESYS: its manual's "Coordinate system" page; MASTA: the property
+/// names of its Python API, mastapy, `SMT.MastaAPI.Bearings.BearingResults`).
+fn write_tool_names(h: &mut String) {
+    let _ = writeln!(h, "<h3 id=\"tools\">From MESYS and MASTA</h3>");
+    let _ = writeln!(
+        h,
+        "<p><b>MESYS</b> (rolling bearing calculation): x is the axial direction, y points to the first \
+         rolling element, the azimuth \u{3c8} is positive about x, moments are positive about their axes, \
+         and the load acts on the inner ring, so a positive y load loads the rolling elements on the y \
+         side. This FMU uses the same frame: the load inputs <code>Fx</code>, <code>Fy</code>, \
+         <code>Fz</code> act on the cone (inner ring), \u{3c8} = 0 is +y and a positive <code>Fy</code> \
+         loads the rollers there; roller 1 sits at <code>cage.angle0</code> (0 = on the y axis, MESYS's \
+         default). MESYS's force/moment or displacement/rotation loading is <code>causality</code> = 0 \
+         or 1. The one choice to check is the sense of x: here +x points from the large roller ends \
+         to the small ones, so that a positive <code>Fx</code> loads the bearing; orient the MESYS \
+         bearing so that its positive axial load does the same, or mirror through the y-z plane: flip \
+         the x components of forces and displacements (<code>Fx</code>, <code>cone.x</code>, \
+         <code>reaction.Fx</code>) and the y and z components of tilts and moments (<code>xi</code>, \
+         <code>zeta</code>, <code>reaction.My/Mz</code>); speeds stay (examples/drivetrain mirrors its \
+         second bearing this way).</p>"
+    );
+    let _ = writeln!(
+        h,
+        "<table><tr><th>MASTA (mastapy property)</th><th>this FMU</th><th>note</th></tr>"
+    );
+    for (masta, ours, note) in [
+        ("InnerRingAngularVelocity", "speed", "rad/s, about +x"),
+        ("OuterRingAngularVelocity", "cupSpeed", "rad/s, about +x"),
+        ("RelativeAngularVelocity", "speed \u{2212} cupSpeed", "lives and torque use it"),
+        ("AxialDisplacementPreload", "axialDisplacement (preload = 1)", "m"),
+        ("SpecifiedRadialInternalClearance", "clearance", "m, negative = interference"),
+        ("RelativeAxialDisplacement", "cone.x (displacement.x)", "m"),
+        ("RelativeRadialDisplacement", "|(cone.y, cone.z)|", "m"),
+        ("RelativeMisalignment", "|(xi, zeta)|", "rad"),
+        (
+            "ForceOnInnerRace",
+            "\u{2212}reaction.Fx/Fy/Fz/My/Mz",
+            "the rollers' force on the cone; the API listing does not state its sign, so compare one axial case",
+        ),
+        ("DynamicEquivalentLoad (ISO 281)", "P of life.L10", "not an output: P = rating.C / L^(3/10), L = life.L10 \u{d7} 3600 |speed \u{2212} cupSpeed| / (2\u{3c0} 10^6) million revolutions"),
+        ("BasicRatingLifeTime (ISO 281)", "life.L10", "hours"),
+        ("ISOTS162812008BasicReferenceRatingLifeTime", "life.L10r", "hours, a1 = a_ISO = 1"),
+        ("FrictionalMoment", "frictionTorque", "N m, between the rings"),
+        ("PowerLoss", "powerLoss", "W"),
+    ] {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td><code>{}</code></td><td>{}</td></tr>",
+            esc(masta),
+            esc(ours),
+            esc(note)
+        );
+    }
+    let _ = writeln!(h, "</table>");
 }
 
 fn type_name(v: &Variable) -> &'static str {
