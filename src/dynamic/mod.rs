@@ -544,3 +544,5 @@ pub(crate) fn cone_rotation(xi: f64, zeta: f64) -> Matrix3<f64> {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod spectrum;
