@@ -34,6 +34,7 @@ use crate::fastmath as fm;
 use crate::geometry::{ContactLine, Geometry};
 use crate::model::{Inputs, Lubrication, Outputs, Parameters};
 use crate::tribology as tr;
+use super::load_table::LoadTable;
 
 /// Per-slice weights the solver multiplies with the slice loads.
 #[derive(Debug, Clone)]
@@ -124,7 +125,15 @@ struct SliceConst {
     rolls: bool,
     roll_a: f64,
     e_r_l: f64,
+    /// Largest load read from the friction table (`TABLE_PRESSURE`); above it the laws are
+    /// evaluated directly.
+    table_max: f64,
 }
+
+/// Hertz pressure up to which the slice laws are read from the table: beyond the 4 GPa of
+/// ISO 76's static rating for roller bearings, where the film laws' viscosity and limiting
+/// shear turn sharply and interpolation loses accuracy, every slice is evaluated directly.
+const TABLE_PRESSURE: f64 = 4.5e9;
 
 /// [`SliceConst`] of both raceways at one speed.
 #[derive(Debug, Clone, Default)]
@@ -137,6 +146,11 @@ struct SpeedCache {
     /// where every slice of the line is entrained.
     cone_film: super::simd::FilmConsts,
     cup_film: super::simd::FilmConsts,
+    /// Traction coefficient and rolling resistance per unit load of every slice position of
+    /// both raceways (cone lines, then cup lines), and the flange's friction force per unit
+    /// load, at this speed, tabulated over the load as the solves need them (fidelity 0).
+    raceways: LoadTable,
+    flange: LoadTable,
 }
 
 /// Largest slice count of the two-lane pre-pass (its scratch arrays live on the stack).
@@ -284,6 +298,8 @@ impl FrictionModel {
             let mut c = SliceConst {
                 u_e,
                 v_s,
+                // p_h = sqrt(w E' / (2 pi r)) for a line load w on the reduced radius r
+                table_max: 2.0 * std::f64::consts::PI * r_bar * TABLE_PRESSURE * TABLE_PRESSURE / e_prime * self.slice_len,
                 ln_vs: if v_s > 0.0 { fm::ln(v_s) } else { f64::NEG_INFINITY },
                 boundary_slide_roll: if weights.entrain[k] > 0.0 {
                     weights.slide[k] / weights.entrain[k]
@@ -331,6 +347,44 @@ impl FrictionModel {
         (num / c.heat_den).max(tr::film::MIN_THERMAL_FACTOR)
     }
 
+    /// Traction coefficient and rolling resistance (N) of one loaded raceway slice at load
+    /// `q` > 0 (`traction` = 0 with EHL): its film, inlet heating, thermal Eyring traction and
+    /// EHL rolling resistance from the slice position's speed constants `c` and radius `r_bar`.
+    #[inline(always)]
+    fn slice_friction<const HALLEY: bool>(&self, c: &SliceConst, r_bar: f64, q: f64) -> (f64, f64) {
+        let e_prime = self.lubricant.e_prime;
+        let w = q / self.slice_len;
+        let (b, _) = line_contact_half_width(w, r_bar, e_prime);
+        let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
+        if c.u_e > 0.0 {
+            let p_h = 4.0 / std::f64::consts::PI * p_mean;
+            let heating = Self::heating(c, p_h / e_prime);
+            let h_iso = c.film_a * fm::powf(w / c.e_r, -0.166);
+            let mu = if w > 0.0 {
+                let h = heating * h_iso;
+                let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
+                if HALLEY {
+                    self.lubricant
+                        .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                } else {
+                    self.lubricant
+                        .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                }
+            } else {
+                0.0
+            };
+            let rolling = if c.rolls {
+                heating * (c.roll_a * fm::powf(q / c.e_r_l, 0.246) * self.slice_len)
+            } else {
+                0.0
+            };
+            (mu, rolling)
+        } else {
+            // no entrainment at this slice: no film, no rolling resistance
+            (self.lubricant.raceway_mu(w, p_mean, 0.0, 0.0, c.v_s, c.boundary_slide_roll), 0.0)
+        }
+    }
+
     /// One raceway contact, slice by slice (`traction` = 0): each loaded slice's traction at
     /// its own load, pressure, entrainment and sliding speed (the law is far from linear in
     /// the slide-to-roll ratio, so a mean over the line would misplace the plateau), and its
@@ -348,43 +402,12 @@ impl FrictionModel {
             return self.raceway_sliced_generic(line, weights, loads, speed);
         }
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
-        let e_prime = self.lubricant.e_prime;
         let mut f = RacewayFriction::default();
         for (k, &q) in loads.iter().enumerate() {
             if !(q > 0.0) {
                 continue;
             }
-            let c = &consts[k];
-            let w = q / self.slice_len;
-            let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
-            let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
-            let (mu, rolling) = if c.u_e > 0.0 {
-                let p_h = 4.0 / std::f64::consts::PI * p_mean;
-                let heating = Self::heating(c, p_h / e_prime);
-                let h_iso = c.film_a * fm::powf(w / c.e_r, -0.166);
-                let mu = if w > 0.0 {
-                    let h = heating * h_iso;
-                    let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
-                    if HALLEY {
-                        self.lubricant
-                            .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
-                    } else {
-                        self.lubricant
-                            .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
-                    }
-                } else {
-                    0.0
-                };
-                let rolling = if c.rolls {
-                    heating * (c.roll_a * fm::powf(q / c.e_r_l, 0.246) * self.slice_len)
-                } else {
-                    0.0
-                };
-                (mu, rolling)
-            } else {
-                // no entrainment at this slice: no film, no rolling resistance
-                (self.lubricant.raceway_mu(w, p_mean, 0.0, 0.0, c.v_s, c.boundary_slide_roll), 0.0)
-            };
+            let (mu, rolling) = self.slice_friction::<HALLEY>(&consts[k], line.r_bar[k], q);
             f.torque += mu * q * weights.slide[k] + 2.0 * rolling * weights.entrain[k];
             f.skew += mu * q * sign * weights.skew[k];
             f.slide_force += mu * q * sign * weights.sign[k];
@@ -448,6 +471,50 @@ impl FrictionModel {
             return f;
         }
         self.raceway_sliced::<true>(line, weights, consts, loads, speed)
+    }
+
+    /// [`FrictionModel::raceway_sliced`] at fidelity 0 with the slice laws read from `table`
+    /// (lines `first`.. for this raceway's slice positions): the traction coefficient and the
+    /// rolling resistance per unit load, interpolated in ln(load) (`load_table`: relative error
+    /// below 6e-6 p⁴ for a law ~ q^p; loads outside its grid are evaluated directly).
+    #[allow(clippy::too_many_arguments)]
+    fn raceway_tabulated(
+        &self,
+        line: &ContactLine,
+        weights: &SliceWeights,
+        consts: &[SliceConst],
+        table: &mut LoadTable,
+        first: usize,
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        let sign = if speed < 0.0 { -1.0 } else { 1.0 };
+        let mut f = RacewayFriction::default();
+        for (k, &q) in loads.iter().enumerate() {
+            if !(q > 0.0) {
+                continue;
+            }
+            let (c, r_bar) = (&consts[k], line.r_bar[k]);
+            let law = |q: f64| self.slice_friction::<true>(c, r_bar, q);
+            // in logarithms: the film's viscosity grows as exp(alpha p) with p ~ sqrt(q), which
+            // ln(mu) follows smoothly and mu itself does not; rolling / q is a power law
+            let tabulated = match c.v_s > 0.0 && q <= c.table_max {
+                true => table.get(first + k, q, |q| {
+                    let (mu, rolling) = law(q);
+                    [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
+                }),
+                false => None,
+            };
+            let (mu, rolling) = match tabulated {
+                Some([ln_mu, ln_rolling]) => (fm::exp(ln_mu), if c.rolls { fm::exp(ln_rolling) * q } else { 0.0 }),
+                None => law(q),
+            };
+            f.torque += mu * q * weights.slide[k] + 2.0 * rolling * weights.entrain[k];
+            f.skew += mu * q * sign * weights.skew[k];
+            f.slide_force += mu * q * sign * weights.sign[k];
+            f.rolling += rolling;
+        }
+        f
     }
 
     /// [`FrictionModel::raceway_sliced`] straight from the laws (at standstill).
@@ -567,6 +634,8 @@ impl FrictionModel {
                 self.slice_consts(&g.cup, &self.cup_weights, speed.abs(), &mut cache.cup);
                 film_consts(&cache.cone, &g.cone.r_bar, &mut cache.cone_film);
                 film_consts(&cache.cup, &g.cup.r_bar, &mut cache.cup_film);
+                cache.raceways.reset(2 * ns);
+                cache.flange.reset(1);
             } else {
                 cache.cone.clear();
                 cache.cup.clear();
@@ -577,7 +646,12 @@ impl FrictionModel {
             let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
             let (cone, cup) = if sliced {
                 let (cone, cup) = (&loads[..ns], &loads[ns..]);
-                if self.halley {
+                if self.halley && !cache.cone.is_empty() {
+                    (
+                        self.raceway_tabulated(&g.cone, &self.cone_weights, &cache.cone, &mut cache.raceways, 0, cone, speed),
+                        self.raceway_tabulated(&g.cup, &self.cup_weights, &cache.cup, &mut cache.raceways, ns, cup, speed),
+                    )
+                } else if self.halley {
                     (
                         self.raceway_sliced_fast(&g.cone, &self.cone_weights, &cache.cone, &cache.cone_film, cone, speed),
                         self.raceway_sliced_fast(&g.cup, &self.cup_weights, &cache.cup, &cache.cup_film, cup, speed),
@@ -617,7 +691,18 @@ impl FrictionModel {
                             tr::TractionLaw::ThermalEyring => {
                                 let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 2.0 };
                                 if self.halley {
-                                    self.lubricant.rib_force_halley(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                    let law = |q: f64| {
+                                        let (a, b, p_h) = f.hertz.ellipse(q);
+                                        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
+                                        self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                    };
+                                    match sliced && speed != 0.0 {
+                                        true => match cache.flange.get(0, qf, |q| [fm::ln(law(q) / q), 0.0]) {
+                                            Some(v) => fm::exp(v[0]) * qf,
+                                            None => law(qf),
+                                        },
+                                        false => law(qf),
+                                    }
                                 } else {
                                     self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                 }
@@ -651,5 +736,78 @@ impl FrictionModel {
         parts.cone *= copies;
         parts.cup *= copies;
         parts
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bearing::Bearing;
+
+    /// The tabulated slice laws as `raceway_tabulated` reads them against the laws themselves,
+    /// every slice position of both raceways of every preset at its speed, over loads from
+    /// 1 N up to the table's limit (a Hertz pressure of 4.5 GPa): the traction coefficient
+    /// (absolute: where it is small, ~1e-3 at near-zero sliding, it rises as steeply as q^5
+    /// and its relative error is largest, but its force is negligible there) and the rolling
+    /// resistance and the flange's friction force (relative).
+    #[test]
+    fn tabulated_slice_friction_follows_the_laws() {
+        for name in ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"] {
+            let b = Bearing::preset(name).unwrap();
+            let p = Parameters::from_bearing(&b);
+            let qs = super::super::QuasiStatic::new(&b, &p).unwrap();
+            let (g, fr) = (&qs.geometry, &qs.friction);
+            let speed = Inputs::from_bearing(&b).speed.abs();
+            let (mut mu_abs, mut mu_rel, mut roll_rel, mut n) = (0.0_f64, 0.0_f64, 0.0_f64, 0);
+            for (line, weights) in [(&g.cone, &fr.cone_weights), (&g.cup, &fr.cup_weights)] {
+                let mut consts = Vec::new();
+                fr.slice_consts(line, weights, speed, &mut consts);
+                let mut table = LoadTable::default();
+                table.reset(consts.len());
+                for (k, c) in consts.iter().enumerate().filter(|(_, c)| c.v_s > 0.0) {
+                    let law = |q: f64| fr.slice_friction::<true>(c, line.r_bar[k], q);
+                    for q in (0..).map(|m| 1.0233_f64.powi(m)).take_while(|q| *q <= c.table_max) {
+                        let (mu, rolling) = law(q);
+                        let [ln_mu, ln_rolling] = table
+                            .get(k, q, |q| {
+                                let (mu, rolling) = law(q);
+                                [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
+                            })
+                            .expect("every load up to the limit is tabulated");
+                        n += 1;
+                        mu_abs = mu_abs.max((fm::exp(ln_mu) - mu).abs());
+                        if mu > 0.01 {
+                            mu_rel = mu_rel.max((fm::exp(ln_mu) / mu - 1.0).abs());
+                        }
+                        if c.rolls {
+                            roll_rel = roll_rel.max((fm::exp(ln_rolling) * q / rolling - 1.0).abs());
+                        }
+                    }
+                }
+            }
+            // the flange's friction force per unit load, 1 N to 20 kN
+            let mut flange_rel = 0.0_f64;
+            if let Some(f) = &g.flange {
+                let kin = fr.flange;
+                let u_e = speed * kin.entrain;
+                let v_s = speed * kin.slide.abs();
+                let slide_roll = kin.slide.abs() / kin.entrain;
+                let law = |q: f64| {
+                    let (a, b, p_h) = f.hertz.ellipse(q);
+                    let h = tr::film_point(fr.eta0, fr.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
+                    fr.lubricant.rib_force_halley(q, v_s, u_e, slide_roll, h, a, b, p_h)
+                };
+                let mut table = LoadTable::default();
+                table.reset(1);
+                for q in (0..430).map(|m| 1.0233_f64.powi(m)) {
+                    let read = table.get(0, q, |q| [fm::ln(law(q) / q), 0.0]).unwrap();
+                    flange_rel = flange_rel.max((fm::exp(read[0]) * q / law(q) - 1.0).abs());
+                }
+            }
+            eprintln!(
+                "{name}: {n} loads; traction coefficient within {mu_abs:.1e} (relative {mu_rel:.1e} where above 0.01), rolling resistance {roll_rel:.1e}, flange friction {flange_rel:.1e}"
+            );
+            assert!(mu_abs < 2e-6 && mu_rel < 1e-4 && roll_rel < 2e-5 && flange_rel < 1e-6, "{name}");
+        }
     }
 }

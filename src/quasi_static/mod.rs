@@ -18,6 +18,7 @@
 //! residual, so converged solutions are exact).
 
 mod friction;
+mod load_table;
 mod simd;
 mod skew;
 mod stiffness;
