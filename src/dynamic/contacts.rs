@@ -118,6 +118,9 @@ pub(crate) struct Constants {
     /// holds x at 0).
     pub prescribed: [bool; 3],
     pub displacement_causality: bool,
+    /// Evaluate the raceway traction two slices at a time (`slice_traction_pair`): x86-64,
+    /// lubricated, thermal Eyring law. Tests switch it off for the scalar reference.
+    pub(crate) paired_traction: bool,
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -267,6 +270,9 @@ impl Constants {
                 p.causality == LoadCausality::Displacement,
             ],
             displacement_causality: p.causality == LoadCausality::Displacement,
+            paired_traction: cfg!(target_arch = "x86_64")
+                && p.lubrication != Lubrication::Dry
+                && p.traction == tr::TractionLaw::ThermalEyring,
         }
     }
 }
@@ -571,6 +577,36 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
     if let Some(loads) = slice_loads.as_deref_mut() {
         loads.fill(0.0);
     }
+    // a slice's contribution to the sums with its traction (coef, couple)
+    let mut add = |s: &Slice, (coef, couple): (f64, f64)| {
+        let fk = s.n * s.q - s.v_t * coef;
+        sum.f += fk;
+        sum.m += s.lever.cross(&fk);
+        sum.q += s.q;
+        sum.traction -= s.v_t * coef;
+        if let Some(loads) = slice_loads.as_deref_mut() {
+            loads[s.k] = s.q;
+        }
+        sum.power += coef * s.vs * s.vs + s.damping_power.max(0.0);
+        if couple > 0.0 {
+            // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
+            // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
+            // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
+            // the roller's rotation relative to the raceway, without its spin about the normal
+            let w_roll = w_rel - s.n * w_rel.dot(&s.n);
+            let norm = (w_roll.norm_squared() + line.roll_eps2[s.k]).sqrt();
+            let m_roll = w_roll * (-couple / norm);
+            sum.m += m_roll;
+            sum.power += -m_roll.dot(&w_roll);
+        }
+        sum.extrapolated |= s.ext;
+    };
+    // the thermal Eyring law's slices two at a time (`slice_traction_pair`): the one waiting
+    // for its partner
+    #[cfg(target_arch = "x86_64")]
+    let paired = c.paired_traction;
+    #[cfg(target_arch = "x86_64")]
+    let mut pending: Option<Slice> = None;
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
         let cl = race.pos + race.a * c.s_cm[k];
@@ -645,31 +681,119 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
         let v_t = v_rel - n * vn;
         let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-        let vs = v_t.norm();
-        let (coef, couple) = slice_traction(c, line, k, q, vs, u_e);
-        let fk = n * q - v_t * coef;
-        sum.f += fk;
-        sum.m += lever.cross(&fk);
-        sum.q += q;
-        sum.traction -= v_t * coef;
-        if let Some(loads) = slice_loads.as_deref_mut() {
-            loads[k] = q;
+        let s = Slice {
+            k,
+            q,
+            n,
+            lever,
+            v_t,
+            vs: v_t.norm(),
+            u_e,
+            damping_power,
+            ext,
+        };
+        // the lubricated traction of two slices at once; the others, and the last one left
+        // over, before the next slice's sums (the sums stay in slice order)
+        #[cfg(target_arch = "x86_64")]
+        {
+            if paired && s.paired() {
+                match pending.take() {
+                    None => pending = Some(s),
+                    Some(first) => {
+                        let [ta, tb] = slice_traction_pair(c, line, &first, &s);
+                        add(&first, ta);
+                        add(&s, tb);
+                    }
+                }
+                continue;
+            }
+            if let Some(first) = pending.take() {
+                add(&first, slice_traction_pair(c, line, &first, &first)[0]);
+            }
         }
-        sum.power += coef * vs * vs + damping_power.max(0.0);
-        if couple > 0.0 {
-            // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
-            // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
-            // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
-            // the roller's rotation relative to the raceway, without its spin about the normal
-            let w_roll = w_rel - n * w_rel.dot(&n);
-            let norm = (w_roll.norm_squared() + line.roll_eps2[k]).sqrt();
-            let m_roll = w_roll * (-couple / norm);
-            sum.m += m_roll;
-            sum.power += -m_roll.dot(&w_roll);
-        }
-        sum.extrapolated |= ext;
+        add(&s, slice_traction(c, line, k, s.q, s.vs, s.u_e));
+    }
+    #[cfg(target_arch = "x86_64")]
+    if let Some(first) = pending.take() {
+        add(&first, slice_traction_pair(c, line, &first, &first)[0]);
     }
     sum
+}
+
+/// A touching slice of [`race_slices`] as its traction and the sums take it: index, normal
+/// load, raceway normal, lever from the centre of mass, tangential relative velocity and its
+/// norm, entrainment speed, damping power, extrapolated contact law.
+#[derive(Clone, Copy)]
+struct Slice {
+    k: usize,
+    q: f64,
+    n: V3,
+    lever: V3,
+    v_t: V3,
+    vs: f64,
+    u_e: f64,
+    damping_power: f64,
+    ext: bool,
+}
+
+impl Slice {
+    /// Whether [`slice_traction_pair`] takes this slice: loaded, sliding and entrained (the
+    /// full law of [`slice_traction`], not one of its special cases), finite.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn paired(&self) -> bool {
+        self.q > 0.0 && self.vs > 0.0 && self.u_e >= 1e-6 && self.q.is_finite() && self.vs.is_finite() && self.u_e.is_finite()
+    }
+}
+
+/// [`slice_traction`] of two slices at once with the thermal Eyring law (x86-64, two lanes of
+/// `simd_math`; `tribology::pair`), for slices that [`Slice::paired`] takes, in both lanes the
+/// same formulas in the same order; a lane outside the two-lane kernels' range by the scalar
+/// code. (coef, couple) of `a` and of `b`.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
+    use crate::simd_math::{self as sm, F2, M2};
+    let (ka, kb) = (a.k, b.k);
+    let (q, vs, u_e) = (F2::new(a.q, b.q), F2::new(a.vs, b.vs), F2::new(a.u_e, b.u_e));
+    let w = q * c.inv_slice_len;
+    let (ln_ue, ln_w) = (sm::ln(u_e), sm::ln(w));
+    let ln_h_iso = F2::new(line.ln_film[ka], line.ln_film[kb]) + 0.692 * ln_ue - 0.166 * ln_w;
+    let p_mean = (w * F2::new(line.k_pmean[ka], line.k_pmean[kb])).sqrt();
+    let ln_vs = sm::ln(vs);
+    let (heating, mut ok) = if c.ln_inlet_heating > f64::NEG_INFINITY {
+        tr::pair::thermal_reduction_ln(c.ln_inlet_heating + 2.0 * ln_ue, 4.0 / PI * p_mean / c.e_prime, ln_vs - ln_ue)
+    } else {
+        (F2::splat(1.0), M2::splat(true))
+    };
+    ok = ok & tr::pair::exp_range(ln_h_iso);
+    let (h, ln_h) = (heating * sm::exp(ln_h_iso), ln_h_iso + sm::ln(heating));
+    let boundary_slide_roll = vs / u_e.max(F2::splat(MIN_BOUNDARY_ENTRAINMENT));
+    let (mu, film_ok) = c
+        .lubricant
+        .raceway_mu_film_pair(w, p_mean, h, ln_h, u_e, vs, ln_vs, boundary_slide_roll);
+    ok = ok & film_ok;
+    let coef = mu * q / vs;
+    let couple = if c.rolling_resistance {
+        let ln_couple = F2::new(line.ln_roll[ka], line.ln_roll[kb]) + 0.648 * ln_ue + 0.246 * ln_w;
+        ok = ok & tr::pair::exp_range(ln_couple);
+        heating * sm::exp(ln_couple)
+    } else {
+        F2::splat(0.0)
+    };
+    let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
+    [
+        if bits & 1 != 0 {
+            (ca, pa)
+        } else {
+            slice_traction(c, line, ka, a.q, a.vs, a.u_e)
+        },
+        if bits & 2 != 0 {
+            (cb, pb)
+        } else {
+            slice_traction(c, line, kb, b.q, b.vs, b.u_e)
+        },
+    ]
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the

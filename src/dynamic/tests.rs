@@ -500,7 +500,8 @@ fn explore_switches() {
 }
 
 /// N right-hand-side evaluations at the initial state of the [W25] case (for profiling with
-/// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`).
+/// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`;
+/// the cost of one is the difference of the runs with RHS_N=51 and RHS_N=1).
 #[test]
 #[ignore]
 fn rhs_cost() {
@@ -510,6 +511,10 @@ fn rhs_cost() {
     p.fidelity = crate::model::Fidelity::Dynamic;
     let i = crate::model::Inputs::from_bearing(&b);
     let (mut d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+    // RHS_SCALAR=1: the raceway traction slice by slice (the reference of the two-lane path)
+    if std::env::var("RHS_SCALAR").is_ok() {
+        d.c.paired_traction = false;
+    }
     let mut dy = vec![0.0; st.y.len()];
     d.rhs(&i, &st.y, &mut dy);
     let t0 = std::time::Instant::now();
@@ -602,6 +607,7 @@ fn explore_spectrum() {
 
 /// Right-hand sides and outputs at a set of states, written to (SNAP_WRITE=1) or compared
 /// with /tmp/trb_snap: a check that a rewrite of the right-hand side changes it only by rounding.
+/// SNAP_SCALAR=1: with the raceway traction slice by slice (`Constants::paired_traction` off).
 #[test]
 #[ignore]
 fn rhs_snapshot() {
@@ -640,6 +646,9 @@ fn rhs_snapshot() {
         let mut i = Inputs::from_bearing(&b);
         setup(&mut p, &mut i);
         let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        if std::env::var("SNAP_SCALAR").is_ok() {
+            d.c.paired_traction = false;
+        }
         let mut out = Outputs::new(b.roller_count);
         for t_end in [0.0, 1e-3] {
             if name == "d19" && t_end > 0.0 {
@@ -1001,6 +1010,94 @@ fn explore_sweep() {
                 qf / n,
                 t0.elapsed().as_secs_f64()
             );
+        }
+    }
+}
+
+/// The raceway traction two slices at a time (`Constants::paired_traction`, x86-64) against
+/// the scalar law slice by slice: the derivative agrees to 1e-12 of the scale of the forces
+/// each row sums (a roller's acceleration rows are near-cancelling sums of its contact loads:
+/// the scale is its raceway and flange load over its mass, times the roller length over the
+/// transverse inertia for the angular ones; the cone's the total load over the cone mass).
+/// Rows without raceway traction (positions, cage) agree bit for bit. States: the [W25] start
+/// and 1 ms on, combined load with misalignment, a mixed film (rough surfaces), no inlet
+/// heating, low speed, and the laws without the two-lane path (dry, `traction` = 1).
+#[test]
+fn paired_traction_agrees_with_the_scalar_law() {
+    use crate::model::{Fidelity, Inputs, Lubrication, Parameters};
+    use crate::tribology::TractionLaw;
+    type Setup = fn(&mut Parameters, &mut Inputs);
+    let cases: Vec<(&str, f64, Setup)> = vec![
+        ("w25", 0.0, |_, _| {}),
+        ("w25 after 1 ms", 1e-3, |_, _| {}),
+        ("combined, misaligned", 0.0, |_, i| {
+            i.fy = 25e3;
+            i.xi = 0.004_f64.to_radians();
+            i.zeta = -0.002_f64.to_radians();
+        }),
+        ("mixed film", 0.0, |p, i| {
+            p.roughness = 1.5e-6;
+            i.fy = 10e3;
+        }),
+        ("boundary", 0.0, |p, _| p.roughness = 2e-5),
+        ("no inlet heating", 0.0, |p, _| p.oil_beta = 0.0),
+        ("100 rpm", 0.0, |_, i| i.speed = 100.0 * RPM),
+        ("dry", 0.0, |p, i| {
+            p.lubrication = Lubrication::Dry;
+            i.fy = 5e3;
+        }),
+        ("traction 1", 0.0, |p, i| {
+            p.traction = TractionLaw::NewtonianEyring;
+            i.fy = 10e3;
+        }),
+    ];
+    for (name, t_end, setup) in cases {
+        let b = Bearing::default_preset();
+        let mut p = Parameters::from_bearing(&b);
+        p.fidelity = Fidelity::Dynamic;
+        p.slices = 20;
+        let mut i = Inputs::from_bearing(&b);
+        setup(&mut p, &mut i);
+        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        if t_end > 0.0 {
+            d.advance(&mut st, &i, t_end).unwrap();
+        }
+        let n = st.y.len();
+        let (mut fast, mut slow) = (vec![0.0; n], vec![0.0; n]);
+        d.rhs(&i, &st.y, &mut fast);
+        let paired = d.c.paired_traction;
+        d.c.paired_traction = false;
+        d.rhs(&i, &st.y, &mut slow);
+        let (m_r, i_t, len) = (d.g.roller_mass, d.g.inertia_transverse, d.g.length);
+        let loads: Vec<f64> = d.records.iter().map(|r| r.qi + r.qo + r.qf).collect();
+        let mut worst: f64 = 0.0;
+        for k in 0..n {
+            let (a, s) = (fast[k], slow[k]);
+            let scale = if k < super::ROLLERS {
+                if (super::CONE + 3..super::CONE + 6).contains(&k) {
+                    loads.iter().sum::<f64>() / d.p.cone_mass
+                } else {
+                    0.0
+                }
+            } else {
+                let (j, row) = ((k - super::ROLLERS) / super::PER_ROLLER, (k - super::ROLLERS) % super::PER_ROLLER);
+                match row {
+                    3 | 4 => loads[j] / m_r,
+                    5 => loads[j] / (m_r * d.g.center[1]),
+                    8..=10 => loads[j] * len / i_t,
+                    _ => 0.0,
+                }
+            };
+            if scale == 0.0 {
+                assert_eq!(a.to_bits(), s.to_bits(), "{name}: row {k} {a} vs {s}");
+            } else {
+                worst = worst.max((a - s).abs() / scale);
+            }
+        }
+        println!("{name}: paired {paired}, worst difference {worst:.2e} of the row's force scale");
+        assert!(worst <= 1e-12, "{name}: {worst:e}");
+        if !paired {
+            assert_eq!(fast, slow, "{name}: no two-lane path, the same evaluation");
         }
     }
 }

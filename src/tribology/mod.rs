@@ -6,6 +6,7 @@
 //!   the inlet shear-heating reduction of Gupta et al. (1992);
 //! - `traction.rs`: full-film traction laws (parameter `traction`): the thermal Eyring film
 //!   with elastic entry and limiting shear (default), or the isothermal Newtonian Eyring law;
+//! - `pair.rs`: the raceway traction of two slices at once (x86-64, the dynamic model's);
 //! - `rib.rs`: the roller end on the rib: asperity and film shares from the film ratio;
 //! - here: the boundary law of [W25] (Kragelskii), the [W25] sixth-power blend of the mixed
 //!   regime, the EHL rolling resistance and dry Coulomb friction [D19].
@@ -15,6 +16,8 @@
 //! constants are the oil's (documented defaults in docs/model.md, "Oil traction data").
 
 pub mod film;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod pair;
 pub mod rib;
 pub mod traction;
 pub mod viscosity;
