@@ -514,9 +514,12 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
             asperity + viscous
         }
         tr::TractionLaw::ThermalEyring => {
-            c.lubricant
-                .rib_force(q, vs, u_e, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT), h_iso, ea, eb, ph)
-                / vs
+            let slide_roll = vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT);
+            #[cfg(target_arch = "x86_64")]
+            if c.paired_traction {
+                return c.lubricant.rib_force_paired(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs;
+            }
+            c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs
         }
     }
 }

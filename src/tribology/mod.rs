@@ -147,14 +147,14 @@ impl Lubricant {
     /// [`Lubricant::raceway_mu`].
     #[allow(clippy::too_many_arguments)]
     pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, false)
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
     }
 
     /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
     /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
     #[allow(clippy::too_many_arguments)]
     pub fn rib_force_halley(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, true)
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib::rib_film_traction_halley)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -169,7 +169,7 @@ impl Lubricant {
         a: f64,
         b: f64,
         p_h: f64,
-        halley: bool,
+        film: RibFilm,
     ) -> f64 {
         if !(q > 0.0) {
             return 0.0;
@@ -187,18 +187,16 @@ impl Lubricant {
             0.0
         };
         let film = if share < 1.0 && v_s > 0.0 {
-            (1.0 - share)
-                * if halley {
-                    rib::rib_film_traction_halley(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
-                } else {
-                    rib_film_traction(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
-                }
+            (1.0 - share) * film(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
         } else {
             0.0
         };
         boundary + film
     }
 }
+
+/// The rib film's traction force as `rib::rib_film_traction` takes its arguments.
+type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
 pub fn boundary_mu(slide_roll: f64) -> f64 {

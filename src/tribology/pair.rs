@@ -1,18 +1,22 @@
 //! The lubricated raceway traction of two slices at once (x86-64, `simd_math`): the inlet
 //! heating factor ([`film::thermal_reduction_ln`]) and the coefficient of the thermal Eyring
-//! law ([`Lubricant::raceway_mu_film`]: asperity share, Eyring film equation solved by
-//! Newton's method, elastic entry, limiting shear) in both lanes. The same formulas in the
-//! same order as the scalar code, with fdlibm's ln and exp (< 1 ulp; `fastmath`'s round
-//! differently): the values agree with the scalar ones to rounding. The film equation runs
-//! until both lanes have converged, each lane keeping the value at its own stopping step.
+//! law ([`Lubricant::raceway_mu_film`]: asperity share, Eyring film equation, elastic entry,
+//! limiting shear) in both lanes, and the rib film's Gauss sum two rings at a time. The same
+//! formulas in the same order as the scalar code, with fdlibm's ln and exp (< 1 ulp;
+//! `fastmath`'s round differently), and the film equation solved by Halley's method (the
+//! scalar law of the dynamic model takes Newton's: the same root to rounding, in about half
+//! the evaluations): the values agree with the scalar ones to rounding. The film equation
+//! runs until both lanes have converged, each lane keeping the value at its own stopping step.
 //!
 //! Lanes outside the range the two-lane kernels take (an exponential's argument beyond
 //! +-700, a film equation that does not converge as the scalar solver does) are reported by
 //! the mask, and the caller evaluates them with the scalar code.
 
-use super::traction::{LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
-use super::{film, Lubricant};
+use super::traction::{FilmContact, Rheology, LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
+use super::{film, rib, Lubricant, ViscosityTable};
+use crate::fastmath as fm;
 use crate::simd_math::{self as sm, F2, M2};
+use std::f64::consts::PI;
 
 /// Largest |argument| of the two-lane exponential the kernels pass without a check of their own.
 const EXP_RANGE: f64 = 700.0;
@@ -52,40 +56,131 @@ impl Lubricant {
     ) -> (F2, M2) {
         let zero = F2::splat(0.0);
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { zero };
-        // the film's stress (thermal_eyring_stress_with), per lane its viscosity from the table
-        let r = &self.rheology;
+        // the film's stress, per lane its viscosity from the table
         let [p0, p1] = p_mean.lanes();
         let ln_eta = F2::new(self.viscosity.ln_eta(p0), self.viscosity.ln_eta(p1));
-        let half_width = 0.5 * w / p_mean;
-        let tau0 = r.eyring_stress;
-        let hf = h.max(F2::splat(1e-9));
-        let ln_x = ln_eta + ln_vs - ln_h.max(F2::splat(LN_MIN_FILM)) - r.ln_eyring_stress;
-        let b = half_width.max(zero);
-        let peclet = u_e.abs() * b * (0.5 / STEEL_DIFFUSIVITY);
-        let heat = 0.376 * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt()) + hf / (12.0 * r.conductivity);
-        let beta = (r.beta_per_roelands * (ln_eta + 9.67)).max(F2::splat(r.beta));
-        let heating = beta * tau0 * v_s * heat;
-        let (y, ok) = solve_thermal_eyring(ln_x, heating);
-        let mut tau = tau0 * y;
-        if r.shear_modulus > 0.0 {
-            // elastic entry (Maxwell), where tau > 0 (u_e > 0 here)
-            let ratio = 2.0 * b * r.shear_modulus * v_s / (u_e.abs() * tau * hf);
-            tau = tau.gt(zero).select(tau * maxwell_mean(ratio), tau);
-        }
-        // smooth minimum with the limiting shear stress (traction::limit)
-        let stress = if r.limiting_shear > 0.0 {
-            let tau_l = r.limiting_shear * p_mean;
-            let (t2, l2) = (tau * tau, tau_l * tau_l);
-            tau * tau_l / (t2 * t2 + l2 * l2).sqrt().sqrt()
-        } else {
-            tau
-        };
+        let (stress, ok) = thermal_eyring_stress_ln(&self.rheology, p_mean, ln_eta, h, 0.5 * w / p_mean, u_e, v_s, ln_vs, ln_h);
         let film = share.lt(F2::splat(1.0)).select(stress / p_mean, zero);
         let boundary = share.gt(zero).select(boundary_mu(boundary_slide_roll), zero);
         // a lane whose film does not enter (share 1) is valid whatever its film equation did
         let ok = ok | share.ge(F2::splat(1.0));
         (share * boundary + (1.0 - share) * film, ok)
     }
+}
+
+impl Lubricant {
+    /// [`Lubricant::rib_force`] with the film's Gauss sum two rings at a time
+    /// ([`rib_film_traction`]: the same force to rounding; the dynamic model's).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn rib_force_paired(
+        &self,
+        q: f64,
+        v_s: f64,
+        u_e: f64,
+        boundary_slide_roll: f64,
+        h_iso: f64,
+        a: f64,
+        b: f64,
+        p_h: f64,
+    ) -> f64 {
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
+    }
+}
+
+/// `traction::thermal_eyring_stress_ln` in both lanes: film shear stress |tau| (Pa) at mean
+/// pressure `pressure`, ln viscosity `ln_eta`, film `film` >= 1e-9 m, half-width, entrainment
+/// speed, sliding speed `v_s` > 0 and the logarithms of `v_s` and of the film; the mask as
+/// [`solve_thermal_eyring`]'s.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn thermal_eyring_stress_ln(
+    r: &Rheology,
+    pressure: F2,
+    ln_eta: F2,
+    film: F2,
+    half_width: F2,
+    entrainment: F2,
+    v_s: F2,
+    ln_vs: F2,
+    ln_h: F2,
+) -> (F2, M2) {
+    let zero = F2::splat(0.0);
+    let tau0 = r.eyring_stress;
+    let h = film.max(F2::splat(1e-9));
+    // X = eta gamma_dot / tau_0
+    let ln_x = ln_eta + ln_vs - ln_h.max(F2::splat(LN_MIN_FILM)) - r.ln_eyring_stress;
+    // temperature rise per unit stress (surface flash + film mean), times beta_p tau_0
+    let b = half_width.max(zero);
+    let peclet = entrainment.abs() * b * (0.5 / STEEL_DIFFUSIVITY);
+    let heat = 0.376 * b / (STEEL_CONDUCTIVITY * (peclet + 1.0).sqrt()) + h / (12.0 * r.conductivity);
+    let beta = (r.beta_per_roelands * (ln_eta + 9.67)).max(F2::splat(r.beta));
+    let heating = beta * tau0 * v_s * heat;
+    let (y, ok) = solve_thermal_eyring(ln_x, heating);
+    let mut tau = tau0 * y;
+    if r.shear_modulus > 0.0 {
+        // elastic entry (Maxwell), where u_e > 0 and tau > 0
+        let ratio = 2.0 * b * r.shear_modulus * v_s / (entrainment.abs() * tau * h);
+        let entered = tau.gt(zero) & entrainment.abs().gt(zero);
+        tau = entered.select(tau * maxwell_mean(ratio), tau);
+    }
+    // smooth minimum with the limiting shear stress (traction::limit)
+    let tau_l = r.limiting_shear * pressure;
+    let (t2, l2) = (tau * tau, tau_l * tau_l);
+    (tau_l.gt(zero).select(tau * tau_l / (t2 * t2 + l2 * l2).sqrt().sqrt(), tau), ok)
+}
+
+/// [`super::rib::rib_film_traction`] with the stress of two rings of its Gauss sum at a time:
+/// the same force to rounding.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
+    if a <= 0.0 || b <= 0.0 || v_s == 0.0 {
+        return 0.0;
+    }
+    let v = v_s.abs();
+    if !(v > 0.0 && v < f64::INFINITY && h.is_finite() && u_e.is_finite() && p_h > 0.0 && p_h < f64::INFINITY) {
+        return super::rib_film_traction(r, viscosity, v_s, h, u_e, a, b, p_h);
+    }
+    let (ln_v, ln_h) = (fm::ln(v), fm::ln(h.max(1e-9)));
+    let mut sum = 0.0;
+    for k in (0..8).step_by(2) {
+        let (rho0, rho1) = (rib::X[k], rib::X[k + 1]);
+        let root = F2::new((1.0 - rho0 * rho0).max(0.0).sqrt(), (1.0 - rho1 * rho1).max(0.0).sqrt());
+        let p = p_h * root;
+        let [pa, pb] = p.lanes();
+        let ln_eta = F2::new(viscosity.ln_eta(pa), viscosity.ln_eta(pb));
+        let (tau, ok) = thermal_eyring_stress_ln(
+            r,
+            p,
+            ln_eta,
+            F2::splat(h),
+            a * root,
+            F2::splat(u_e),
+            F2::splat(v),
+            F2::splat(ln_v),
+            F2::splat(ln_h),
+        );
+        let [mut ta, mut tb] = tau.lanes();
+        let bits = ok.bits();
+        let ring = |p: f64, root: f64| {
+            let contact = FilmContact {
+                pressure: p,
+                ln_eta: viscosity.ln_eta(p),
+                film: h,
+                half_width: a * root,
+                entrainment: u_e,
+            };
+            super::traction::thermal_eyring_stress_ln(r, &contact, v, ln_v, ln_h)
+        };
+        if bits & 1 == 0 {
+            ta = ring(pa, root.lanes()[0]);
+        }
+        if bits & 2 == 0 {
+            tb = ring(pb, root.lanes()[1]);
+        }
+        sum += rib::W[k] * ta * rho0;
+        sum += rib::W[k + 1] * tb * rho1;
+    }
+    2.0 * PI * a * b * sum
 }
 
 /// [`super::asperity_share`] in both lanes.
@@ -117,10 +212,11 @@ fn maxwell_mean(ratio: F2) -> F2 {
         .select(small, ratio.gt(F2::splat(40.0)).select(large, mid))
 }
 
-/// `traction::solve_thermal_eyring` in both lanes: Newton from the regimes' closed forms with
-/// the same bracket and stopping rule, until both lanes stop; asinh(X) where B = `heating` is
-/// 0. The mask: lanes that stopped as the scalar solver does (within 60 steps, exponentials
-/// in range).
+/// `traction::solve_thermal_eyring` in both lanes, by Halley's method as
+/// `traction::solve_thermal_eyring_halley` (the same root to rounding in 2-3 evaluations
+/// where Newton's takes 4-5), from the regimes' closed forms with the same bracket and
+/// stopping rule, until both lanes stop; asinh(X) where B = `heating` is 0. The mask: lanes
+/// that stopped as the scalar solver does (within 60 steps, exponentials in range).
 #[inline(always)]
 fn solve_thermal_eyring(ln_x: F2, heating: F2) -> (F2, M2) {
     let zero = F2::splat(0.0);
@@ -142,10 +238,13 @@ fn solve_thermal_eyring(ln_x: F2, heating: F2) -> (F2, M2) {
             break;
         }
         let g = ln_x - heating * y;
-        let (asinh, dz) = asinh_exp_and_slope(g);
+        let (asinh, dz, x) = asinh_exp_slope_and_x(g);
         ok = ok & (g.gt(F2::splat(-EXP_RANGE)) | !active);
         let f = y - asinh;
-        let step = f / (1.0 + heating * dz);
+        // f' = 1 + B dz, f'' = -B^2 dz / (1 + e^2g)
+        let d1 = 1.0 + heating * dz;
+        let d2 = -(heating * heating) * dz / (1.0 + x * x);
+        let step = 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
         let above = f.gt(zero);
         hi = above.select(y, hi);
         lo = above.select(lo, y);
@@ -159,14 +258,23 @@ fn solve_thermal_eyring(ln_x: F2, heating: F2) -> (F2, M2) {
     (out, ok & !active)
 }
 
-/// `traction::asinh_exp_and_slope` in both lanes (e^g floored at e^-700: the caller checks g).
+/// asinh(e^g) and its slope in g (`traction::asinh_exp_and_slope`) in both lanes.
 #[inline(always)]
 fn asinh_exp_and_slope(g: F2) -> (F2, F2) {
+    let (asinh, dz, _) = asinh_exp_slope_and_x(g);
+    (asinh, dz)
+}
+
+/// `traction::asinh_exp_slope_and_x` in both lanes: asinh(e^g), its slope and e^g (infinite
+/// above g = 20; e^g floored at e^-700: the caller checks g).
+#[inline(always)]
+fn asinh_exp_slope_and_x(g: F2) -> (F2, F2, F2) {
     let big = g.gt(F2::splat(20.0));
     let x = sm::exp(g.min(F2::splat(20.0)).max(F2::splat(-EXP_RANGE)));
     let root = (x * x + 1.0).sqrt();
     let x2 = x * x;
     let series = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))));
     let asinh = big.select(g + std::f64::consts::LN_2, x.lt(F2::splat(0.1)).select(series, sm::ln(x + root)));
-    (asinh, big.select(F2::splat(1.0), x / root))
+    let inf = F2::splat(f64::INFINITY);
+    (asinh, big.select(F2::splat(1.0), x / root), big.select(inf, x))
 }

@@ -21,7 +21,7 @@ use std::f64::consts::PI;
 
 /// Gauss-Legendre nodes and weights on [0, 1] (8 points) for the radial integral over the
 /// unit disc; the integrand depends on the radius only.
-const X: [f64; 8] = [
+pub(crate) const X: [f64; 8] = [
     0.019_855_071_751_231_856,
     0.101_666_761_293_186_63,
     0.237_233_795_041_835_5,
@@ -31,7 +31,7 @@ const X: [f64; 8] = [
     0.898_333_238_706_813_4,
     0.980_144_928_248_768_2,
 ];
-const W: [f64; 8] = [
+pub(crate) const W: [f64; 8] = [
     0.050_614_268_145_188_13,
     0.111_190_517_226_687_24,
     0.156_853_322_938_943_64,
