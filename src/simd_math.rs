@@ -92,6 +92,10 @@ impl M2 {
     pub fn any(self) -> bool {
         self.bits() != 0
     }
+    #[inline(always)]
+    pub fn all(self) -> bool {
+        self.bits() == 3
+    }
 }
 
 impl BitAnd for M2 {

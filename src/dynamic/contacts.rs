@@ -604,12 +604,13 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
         }
         sum.extrapolated |= s.ext;
     };
-    // the thermal Eyring law's slices two at a time (`slice_traction_pair`): the one waiting
-    // for its partner
+    // the thermal Eyring law's slices two at a time (`slice_traction_pair`): `held[0]` waits
+    // for its partner while `n_held` is 1
     #[cfg(target_arch = "x86_64")]
     let paired = c.paired_traction;
-    #[cfg(target_arch = "x86_64")]
-    let mut pending: Option<Slice> = None;
+    let mut held = [Slice::default(); 2];
+    #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
+    let mut n_held = 0;
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
         let cl = race.pos + race.a * c.s_cm[k];
@@ -684,7 +685,8 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
         let v_t = v_rel - n * vn;
         let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-        let s = Slice {
+        // (written in place: the slice waiting for its partner stays where it is)
+        held[n_held] = Slice {
             k,
             q,
             n,
@@ -699,26 +701,28 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
         // over, before the next slice's sums (the sums stay in slice order)
         #[cfg(target_arch = "x86_64")]
         {
-            if paired && s.paired() {
-                match pending.take() {
-                    None => pending = Some(s),
-                    Some(first) => {
-                        let [ta, tb] = slice_traction_pair(c, line, &first, &s);
-                        add(&first, ta);
-                        add(&s, tb);
-                    }
+            if paired && held[n_held].paired() {
+                if n_held == 0 {
+                    n_held = 1;
+                } else {
+                    let [ta, tb] = slice_traction_pair(c, line, &held[0], &held[1]);
+                    add(&held[0], ta);
+                    add(&held[1], tb);
+                    n_held = 0;
                 }
                 continue;
             }
-            if let Some(first) = pending.take() {
-                add(&first, slice_traction_pair(c, line, &first, &first)[0]);
+            if n_held == 1 {
+                add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
             }
         }
-        add(&s, slice_traction(c, line, k, s.q, s.vs, s.u_e));
+        let s = &held[n_held];
+        add(s, slice_traction(c, line, k, s.q, s.vs, s.u_e));
+        n_held = 0;
     }
     #[cfg(target_arch = "x86_64")]
-    if let Some(first) = pending.take() {
-        add(&first, slice_traction_pair(c, line, &first, &first)[0]);
+    if n_held == 1 {
+        add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
     }
     sum
 }
@@ -726,7 +730,7 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
 /// A touching slice of [`race_slices`] as its traction and the sums take it: index, normal
 /// load, raceway normal, lever from the centre of mass, tangential relative velocity and its
 /// norm, entrainment speed, damping power, extrapolated contact law.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Slice {
     k: usize,
     q: f64,

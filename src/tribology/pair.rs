@@ -61,7 +61,12 @@ impl Lubricant {
         let ln_eta = F2::new(self.viscosity.ln_eta(p0), self.viscosity.ln_eta(p1));
         let (stress, ok) = thermal_eyring_stress_ln(&self.rheology, p_mean, ln_eta, h, 0.5 * w / p_mean, u_e, v_s, ln_vs, ln_h);
         let film = share.lt(F2::splat(1.0)).select(stress / p_mean, zero);
-        let boundary = share.gt(zero).select(boundary_mu(boundary_slide_roll), zero);
+        let asperities = share.gt(zero);
+        let boundary = if asperities.any() {
+            asperities.select(boundary_mu(boundary_slide_roll), zero)
+        } else {
+            zero
+        };
         // a lane whose film does not enter (share 1) is valid whatever its film equation did
         let ok = ok | share.ge(F2::splat(1.0));
         (share * boundary + (1.0 - share) * film, ok)
@@ -220,10 +225,13 @@ fn maxwell_mean(ratio: F2) -> F2 {
 #[inline(always)]
 fn solve_thermal_eyring(ln_x: F2, heating: F2) -> (F2, M2) {
     let zero = F2::splat(0.0);
-    let x0 = sm::exp(ln_x.min(zero));
-    let mut y = ln_x
-        .gt(zero)
-        .select((ln_x + std::f64::consts::LN_2) / (1.0 + heating), x0 / (1.0 + heating * x0));
+    // start: ln(2X) / (1 + B) for X > 1, X / (1 + B X) below
+    let large = ln_x.gt(zero);
+    let mut y = (ln_x + std::f64::consts::LN_2) / (1.0 + heating);
+    if !large.all() {
+        let x0 = sm::exp(ln_x.min(zero));
+        y = large.select(y, x0 / (1.0 + heating * x0));
+    }
     let mut ok = ln_x.gt(F2::splat(-EXP_RANGE));
     let (mut lo, mut hi) = (zero, F2::splat(f64::INFINITY));
     // without heating the closed form (asinh_exp)
