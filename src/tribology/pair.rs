@@ -206,15 +206,17 @@ fn boundary_mu(slide_roll: F2) -> F2 {
     (-0.1 + 22.28 * s) * sm::exp((-181.46 * s).max(F2::splat(-700.0))) + 0.1
 }
 
-/// `traction::maxwell_mean` in both lanes.
+/// `traction::maxwell_mean` in both lanes (the exponential only where a lane needs it).
 #[inline(always)]
 fn maxwell_mean(ratio: F2) -> F2 {
-    let small = 0.5 * ratio * (1.0 - ratio / 3.0);
-    let large = 1.0 - 1.0 / ratio;
-    let mid = 1.0 - (1.0 - sm::exp(-(ratio.min(F2::splat(40.0))))) / ratio;
-    ratio
-        .lt(F2::splat(1e-4))
-        .select(small, ratio.gt(F2::splat(40.0)).select(large, mid))
+    let small = ratio.lt(F2::splat(1e-4));
+    let large = ratio.gt(F2::splat(40.0));
+    let mut mean = large.select(1.0 - 1.0 / ratio, 0.5 * ratio * (1.0 - ratio / 3.0));
+    let mid = !(small | large);
+    if mid.any() {
+        mean = mid.select(1.0 - (1.0 - sm::exp(-(ratio.min(F2::splat(40.0))))) / ratio, mean);
+    }
+    mean
 }
 
 /// `traction::solve_thermal_eyring` in both lanes, by Halley's method as
@@ -280,9 +282,18 @@ fn asinh_exp_slope_and_x(g: F2) -> (F2, F2, F2) {
     let big = g.gt(F2::splat(20.0));
     let x = sm::exp(g.min(F2::splat(20.0)).max(F2::splat(-EXP_RANGE)));
     let root = (x * x + 1.0).sqrt();
-    let x2 = x * x;
-    let series = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))));
-    let asinh = big.select(g + std::f64::consts::LN_2, x.lt(F2::splat(0.1)).select(series, sm::ln(x + root)));
+    // the series below x = 0.1, the logarithm above, each only where a lane needs it
+    let small = x.lt(F2::splat(0.1));
+    let mut asinh = big.select(g + std::f64::consts::LN_2, F2::splat(0.0));
+    if small.any() {
+        let x2 = x * x;
+        let series = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * (-15.0 / 336.0 + x2 * (105.0 / 3456.0)))));
+        asinh = small.select(series, asinh);
+    }
+    let log = !(small | big);
+    if log.any() {
+        asinh = log.select(sm::ln(x + root), asinh);
+    }
     let inf = F2::splat(f64::INFINITY);
     (asinh, big.select(F2::splat(1.0), x / root), big.select(inf, x))
 }
