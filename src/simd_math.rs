@@ -38,6 +38,12 @@ impl F2 {
         unsafe { _mm_storeu_pd(out.as_mut_ptr(), self.0) };
         out
     }
+    /// Lane 0 + lane 1.
+    #[inline(always)]
+    pub fn lane_sum(self) -> f64 {
+        let [a, b] = self.lanes();
+        a + b
+    }
     #[inline(always)]
     pub fn max(self, o: F2) -> F2 {
         F2(unsafe { _mm_max_pd(self.0, o.0) })
@@ -159,6 +165,90 @@ lanewise!(Add, add, _mm_add_pd);
 lanewise!(Sub, sub, _mm_sub_pd);
 lanewise!(Mul, mul, _mm_mul_pd);
 lanewise!(Div, div, _mm_div_pd);
+
+/// A 3-vector in each of two lanes (components as [`F2`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct V3x2 {
+    pub x: F2,
+    pub y: F2,
+    pub z: F2,
+}
+
+impl V3x2 {
+    /// The same vector `v` in both lanes.
+    #[inline(always)]
+    pub fn splat(v: &nalgebra::Vector3<f64>) -> V3x2 {
+        V3x2 {
+            x: F2::splat(v[0]),
+            y: F2::splat(v[1]),
+            z: F2::splat(v[2]),
+        }
+    }
+    #[inline(always)]
+    pub fn new(x: F2, y: F2, z: F2) -> V3x2 {
+        V3x2 { x, y, z }
+    }
+    #[inline(always)]
+    pub fn dot(&self, o: &V3x2) -> F2 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    /// The cross product in nalgebra's order of operations.
+    #[inline(always)]
+    pub fn cross(&self, o: &V3x2) -> V3x2 {
+        V3x2 {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+    #[inline(always)]
+    pub fn norm_squared(&self) -> F2 {
+        self.dot(self)
+    }
+    #[inline(always)]
+    pub fn norm(&self) -> F2 {
+        self.norm_squared().sqrt()
+    }
+    #[inline(always)]
+    pub fn scale(&self, s: F2) -> V3x2 {
+        V3x2 {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
+    }
+    #[inline(always)]
+    pub fn add(&self, o: &V3x2) -> V3x2 {
+        V3x2 {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+    #[inline(always)]
+    pub fn sub(&self, o: &V3x2) -> V3x2 {
+        V3x2 {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+    /// `self` where `m` is set, zero elsewhere.
+    #[inline(always)]
+    pub fn masked(&self, m: M2) -> V3x2 {
+        let zero = F2::splat(0.0);
+        V3x2 {
+            x: m.select(self.x, zero),
+            y: m.select(self.y, zero),
+            z: m.select(self.z, zero),
+        }
+    }
+    /// The sum of the two lanes.
+    #[inline(always)]
+    pub fn lane_sum(&self) -> nalgebra::Vector3<f64> {
+        nalgebra::Vector3::new(self.x.lane_sum(), self.y.lane_sum(), self.z.lane_sum())
+    }
+}
 
 /// ln in both lanes, positive, normal and finite (fdlibm, < 1 ulp).
 #[inline(always)]

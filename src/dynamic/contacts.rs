@@ -121,6 +121,9 @@ pub(crate) struct Constants {
     /// Evaluate the raceway traction two slices at a time (`slice_traction_pair`): x86-64,
     /// lubricated, thermal Eyring law. Tests switch it off for the scalar reference.
     pub(crate) paired_traction: bool,
+    /// Evaluate the slices of a raceway without lobes two at a time (`race_slices_lanes`,
+    /// x86-64). Tests switch it off (with `paired_traction`) for the scalar reference.
+    pub(crate) lane_slices: bool,
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -270,6 +273,7 @@ impl Constants {
                 p.causality == LoadCausality::Displacement,
             ],
             displacement_causality: p.causality == LoadCausality::Displacement,
+            lane_slices: cfg!(target_arch = "x86_64"),
             paired_traction: cfg!(target_arch = "x86_64")
                 && p.lubrication != Lubrication::Dry
                 && p.traction == tr::TractionLaw::ThermalEyring,
@@ -727,6 +731,159 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
     sum
 }
 
+/// [`race_slices`] for a raceway without lobes (extra gap `extra` everywhere, no slope) two
+/// slices at a time (x86-64): slices k and k + 1 in the two lanes of `simd_math` through the
+/// geometry, the contact law (per lane), the traction (`slice_traction_lanes`, lanes it does
+/// not take by [`slice_traction`]) and the sums, which gather the even and the odd slices
+/// apart and add them at the end. The same formulas in the same order as [`race_slices`]:
+/// the sums agree with its to rounding.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
+    use crate::simd_math::{V3x2, F2, M2};
+    let line = race.line;
+    let (r0, r1) = (line.reference[0], line.reference[1]);
+    let (n0, n1) = (line.normal[0], line.normal[1]);
+    // the velocity fields of `race_slices`
+    let ring_c = race.ring_v0 + race.ring_omega.cross(&race.pos);
+    let pt_c = race.pt_v0 + race.pt_omega.cross(&race.pos);
+    let v_c = V3x2::splat(&(race.vel - ring_c));
+    let w_rel_s = race.w - race.ring_omega;
+    let w_rel = V3x2::splat(&w_rel_s);
+    let u_c = V3x2::splat(&((race.vel + ring_c) * 0.5 - pt_c));
+    let w_e = V3x2::splat(&((race.w + race.ring_omega) * 0.5 - race.pt_omega));
+    let (pos, a) = (V3x2::splat(&race.pos), V3x2::splat(&race.a));
+    if let Some(loads) = slice_loads.as_deref_mut() {
+        loads.fill(0.0);
+    }
+    let zero = F2::splat(0.0);
+    let (mut f, mut m, mut traction) = (V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()));
+    let (mut q_sum, mut power) = (zero, zero);
+    let mut extrapolated = false;
+    let ns = c.s_cm.len();
+    let mut k = 0;
+    while k < ns {
+        // an odd last slice: lane 1 repeats it, masked out
+        let kb = (k + 1).min(ns - 1);
+        let two = M2::splat(true);
+        let lanes = if k + 1 < ns { two } else { F2::new(1.0, 0.0).gt(zero) };
+        let pick = |v: &[f64]| F2::new(v[k], v[kb]);
+        let rad = pick(&c.radius) + dd - pick(&c.shrink);
+        let cl = pos.add(&a.scale(pick(&c.s_cm)));
+        let rho_c = (cl.y * cl.y + cl.z * cl.z).sqrt();
+        // the cheap gap test
+        let bound = -((cl.x - r0) * n0 + (rho_c - r1) * n1) + rad + race.gap_max;
+        let mut live = lanes & !bound.lt(F2::splat(-1e-12));
+        if !live.any() {
+            k += 2;
+            continue;
+        }
+        let centre_off = rho_c.gt(zero);
+        let inv = 1.0 / rho_c;
+        let (ey, ez) = (centre_off.select(cl.y * inv, F2::splat(1.0)), centre_off.select(cl.z * inv, zero));
+        // deepest rim point: towards the raceway projected on the disc plane
+        let g = V3x2::new(F2::splat(-n0), -(ey * n1), -(ez * n1));
+        let d = g.sub(&a.scale(g.dot(&a)));
+        let dn = d.norm();
+        live = live & !dn.le(zero);
+        let d = d.scale(1.0 / dn);
+        let pl = cl.add(&d.scale(rad));
+        let rho_p = (pl.y * pl.y + pl.z * pl.z).sqrt();
+        let point_off = rho_p.gt(zero);
+        let (py, pz) = (point_off.select(pl.y / rho_p, F2::splat(1.0)), point_off.select(pl.z / rho_p, zero));
+        let delta = -((pl.x - r0) * n0 + (rho_p - r1) * n1) + extra;
+        live = live & !delta.le(zero);
+        let bits = live.bits();
+        if bits == 0 {
+            k += 2;
+            continue;
+        }
+        // the contact law per lane
+        let [da, db] = delta.lanes();
+        let (qa, dqa, xa) = if bits & 1 != 0 { line.law.load(k, da) } else { (0.0, 0.0, false) };
+        let (qb, dqb, xb) = if bits & 2 != 0 { line.law.load(kb, db) } else { (0.0, 0.0, false) };
+        extrapolated |= xa | xb;
+        let (q_el, dq) = (F2::new(qa, qb), F2::new(dqa, dqb));
+        let n = V3x2::new(F2::splat(n0), py * n1, pz * n1);
+        let lever = pl.sub(&pos);
+        let v_rel = v_c.add(&w_rel.cross(&lever));
+        let vn = v_rel.dot(&n);
+        let c_damp = c.damping_factor * dq.sqrt();
+        let q = live.select((q_el - c_damp * vn).max(zero), zero);
+        let damping_power = (q - q_el) * (-vn);
+        let v_t = v_rel.sub(&n.scale(vn));
+        let ue_vec = u_c.add(&w_e.cross(&lever));
+        let u_e = ue_vec.sub(&n.scale(ue_vec.dot(&n))).norm();
+        let vs = v_t.norm();
+        // traction: both lanes two at a time where the two-lane law takes them
+        let regular = q.gt(zero)
+            & vs.gt(zero)
+            & u_e.ge(F2::splat(1e-6))
+            & q.lt(F2::splat(f64::INFINITY))
+            & vs.lt(F2::splat(f64::INFINITY))
+            & u_e.lt(F2::splat(f64::INFINITY));
+        let (mut coef, mut couple, mut done) = (zero, zero, !live);
+        if c.paired_traction && regular.any() {
+            let (cf, cp, ok) = slice_traction_lanes(
+                c,
+                line,
+                [k, kb],
+                regular.select(q, F2::splat(1.0)),
+                regular.select(vs, F2::splat(1.0)),
+                regular.select(u_e, F2::splat(1.0)),
+            );
+            let took = regular & ok;
+            (coef, couple, done) = (took.select(cf, zero), took.select(cp, zero), done | took);
+        }
+        let done_bits = done.bits();
+        if done_bits != 3 {
+            let ([qa, qb], [va, vb], [ua, ub]) = (q.lanes(), vs.lanes(), u_e.lanes());
+            let ([mut ca, mut cb], [mut pa, mut pb]) = (coef.lanes(), couple.lanes());
+            if done_bits & 1 == 0 {
+                (ca, pa) = slice_traction(c, line, k, qa, va, ua);
+            }
+            if done_bits & 2 == 0 {
+                (cb, pb) = slice_traction(c, line, kb, qb, vb, ub);
+            }
+            (coef, couple) = (F2::new(ca, cb), F2::new(pa, pb));
+        }
+        // the sums (dead lanes add nothing)
+        let fk = n.scale(q).sub(&v_t.scale(coef)).masked(live);
+        f = f.add(&fk);
+        m = m.add(&lever.cross(&fk).masked(live));
+        q_sum = q_sum + q;
+        traction = traction.sub(&v_t.scale(coef).masked(live));
+        power = power + live.select(coef * vs * vs + damping_power.max(zero), zero);
+        let rolls = live & couple.gt(zero);
+        if rolls.any() {
+            // EHL rolling resistance (see `race_slices`)
+            let w_roll = w_rel.sub(&n.scale(w_rel.dot(&n)));
+            let norm = (w_roll.norm_squared() + pick(&line.roll_eps2)).sqrt();
+            let m_roll = w_roll.scale(-couple / norm).masked(rolls);
+            m = m.add(&m_roll);
+            power = power + rolls.select(-m_roll.dot(&w_roll), zero);
+        }
+        if let Some(loads) = slice_loads.as_deref_mut() {
+            let [qa, qb] = q.lanes();
+            if bits & 1 != 0 {
+                loads[k] = qa;
+            }
+            if bits & 2 != 0 {
+                loads[kb] = qb;
+            }
+        }
+        k += 2;
+    }
+    LineSum {
+        f: f.lane_sum(),
+        m: m.lane_sum(),
+        q: q_sum.lane_sum(),
+        traction: traction.lane_sum(),
+        power: power.lane_sum(),
+        extrapolated,
+    }
+}
+
 /// A touching slice of [`race_slices`] as its traction and the sums take it: index, normal
 /// load, raceway normal, lever from the centre of mass, tangential relative velocity and its
 /// norm, entrainment speed, damping power, extrapolated contact law.
@@ -753,16 +910,44 @@ impl Slice {
     }
 }
 
-/// [`slice_traction`] of two slices at once with the thermal Eyring law (x86-64, two lanes of
-/// `simd_math`; `tribology::pair`), for slices that [`Slice::paired`] takes, in both lanes the
-/// same formulas in the same order; a lane outside the two-lane kernels' range by the scalar
-/// code. (coef, couple) of `a` and of `b`.
+/// [`slice_traction`] of two slices at once (`slice_traction_lanes`), a lane outside the
+/// two-lane kernels' range by the scalar code: (coef, couple) of `a` and of `b`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
-    use crate::simd_math::{self as sm, F2, M2};
-    let (ka, kb) = (a.k, b.k);
+    use crate::simd_math::F2;
     let (q, vs, u_e) = (F2::new(a.q, b.q), F2::new(a.vs, b.vs), F2::new(a.u_e, b.u_e));
+    let (coef, couple, ok) = slice_traction_lanes(c, line, [a.k, b.k], q, vs, u_e);
+    let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
+    [
+        if bits & 1 != 0 {
+            (ca, pa)
+        } else {
+            slice_traction(c, line, a.k, a.q, a.vs, a.u_e)
+        },
+        if bits & 2 != 0 {
+            (cb, pb)
+        } else {
+            slice_traction(c, line, b.k, b.q, b.vs, b.u_e)
+        },
+    ]
+}
+
+/// [`slice_traction`] with the thermal Eyring law in two lanes (x86-64, `simd_math`;
+/// `tribology::pair`), slices `k` with load `q`, sliding speed `vs`, entrainment speed `u_e`
+/// that [`Slice::paired`] takes: the same formulas in the same order. (coef, couple, the
+/// lanes within the two-lane kernels' range: the others want the scalar code.)
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn slice_traction_lanes(
+    c: &Constants,
+    line: &LineConst,
+    [ka, kb]: [usize; 2],
+    q: crate::simd_math::F2,
+    vs: crate::simd_math::F2,
+    u_e: crate::simd_math::F2,
+) -> (crate::simd_math::F2, crate::simd_math::F2, crate::simd_math::M2) {
+    use crate::simd_math::{self as sm, F2, M2};
     let w = q * c.inv_slice_len;
     let (ln_ue, ln_w) = (sm::ln(u_e), sm::ln(w));
     let ln_h_iso = F2::new(line.ln_film[ka], line.ln_film[kb]) + 0.692 * ln_ue - 0.166 * ln_w;
@@ -788,19 +973,7 @@ fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) ->
     } else {
         F2::splat(0.0)
     };
-    let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
-    [
-        if bits & 1 != 0 {
-            (ca, pa)
-        } else {
-            slice_traction(c, line, ka, a.q, a.vs, a.u_e)
-        },
-        if bits & 2 != 0 {
-            (cb, pb)
-        } else {
-            slice_traction(c, line, kb, b.q, b.vs, b.u_e)
-        },
-    ]
+    (coef, couple, ok)
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
@@ -892,6 +1065,13 @@ pub(crate) fn evaluate(
             })
         } else {
             let gap = -c.half_clearance * c.cos_o;
+            #[cfg(target_arch = "x86_64")]
+            if c.lane_slices {
+                race_slices_lanes(c, &cup, dd, cup_loads, gap)
+            } else {
+                race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
+            }
+            #[cfg(not(target_arch = "x86_64"))]
             race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
         };
         // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
@@ -907,6 +1087,13 @@ pub(crate) fn evaluate(
             pt_omega: x_l * psid,
             gap_max: 0.0,
         };
+        #[cfg(target_arch = "x86_64")]
+        let cone_sum = if c.lane_slices {
+            race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
+        } else {
+            race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
+        };
+        #[cfg(not(target_arch = "x86_64"))]
         let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
         let (f_cone_r, m_cone_r) = (rot * cone_sum.f, rot * cone_sum.m);
         tot.p_raceway += cup_sum.power + cone_sum.power;
