@@ -521,7 +521,8 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
             let slide_roll = vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT);
             #[cfg(target_arch = "x86_64")]
             if c.paired_traction {
-                return c.lubricant.rib_force_paired(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs;
+                let film = tr::pair::rib_film_traction;
+                return c.lubricant.rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, film) / vs;
             }
             c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs
         }

@@ -157,9 +157,10 @@ impl Lubricant {
         self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib::rib_film_traction_halley)
     }
 
+    /// [`Lubricant::rib_force`] with the rib film's force `film` (as `rib::rib_film_traction`).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn rib_force_with(
+    pub(crate) fn rib_force_with(
         &self,
         q: f64,
         v_s: f64,
@@ -196,7 +197,7 @@ impl Lubricant {
 }
 
 /// The rib film's traction force as `rib::rib_film_traction` takes its arguments.
-type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
+pub(crate) type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
 pub fn boundary_mu(slide_roll: f64) -> f64 {

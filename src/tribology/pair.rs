@@ -12,7 +12,7 @@
 //! +-700, a film equation that does not converge as the scalar solver does) are reported by
 //! the mask, and the caller evaluates them with the scalar code.
 
-use super::traction::{FilmContact, Rheology, LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
+use super::traction::{Rheology, LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
 use super::{film, rib, Lubricant, ViscosityTable};
 use crate::fastmath as fm;
 use crate::simd_math::{self as sm, F2, M2};
@@ -73,25 +73,6 @@ impl Lubricant {
     }
 }
 
-impl Lubricant {
-    /// [`Lubricant::rib_force`] with the film's Gauss sum two rings at a time
-    /// ([`rib_film_traction`]: the same force to rounding; the dynamic model's).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn rib_force_paired(
-        &self,
-        q: f64,
-        v_s: f64,
-        u_e: f64,
-        boundary_slide_roll: f64,
-        h_iso: f64,
-        a: f64,
-        b: f64,
-        p_h: f64,
-    ) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
-    }
-}
-
 /// `traction::thermal_eyring_stress_ln` in both lanes: film shear stress |tau| (Pa) at mean
 /// pressure `pressure`, ln viscosity `ln_eta`, film `film` >= 1e-9 m, half-width, entrainment
 /// speed, sliding speed `v_s` > 0 and the logarithms of `v_s` and of the film; the mask as
@@ -135,7 +116,7 @@ pub(crate) fn thermal_eyring_stress_ln(
 }
 
 /// [`super::rib::rib_film_traction`] with the stress of two rings of its Gauss sum at a time:
-/// the same force to rounding.
+/// the same force to rounding (the dynamic model's, through `Lubricant::rib_force_with`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
     if a <= 0.0 || b <= 0.0 || v_s == 0.0 {
@@ -166,16 +147,8 @@ pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f
         );
         let [mut ta, mut tb] = tau.lanes();
         let bits = ok.bits();
-        let ring = |p: f64, root: f64| {
-            let contact = FilmContact {
-                pressure: p,
-                ln_eta: viscosity.ln_eta(p),
-                film: h,
-                half_width: a * root,
-                entrainment: u_e,
-            };
-            super::traction::thermal_eyring_stress_ln(r, &contact, v, ln_v, ln_h)
-        };
+        let ring =
+            |p: f64, root: f64| super::traction::thermal_eyring_stress_ln(r, &rib::ring(viscosity, p, root, h, a, u_e), v, ln_v, ln_h);
         if bits & 1 == 0 {
             ta = ring(pa, root.lanes()[0]);
         }
