@@ -57,8 +57,7 @@ impl Lubricant {
         let zero = F2::splat(0.0);
         let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { zero };
         // the film's stress, per lane its viscosity from the table
-        let [p0, p1] = p_mean.lanes();
-        let ln_eta = F2::new(self.viscosity.ln_eta(p0), self.viscosity.ln_eta(p1));
+        let ln_eta = ln_eta(&self.viscosity, p_mean);
         let (stress, ok) = thermal_eyring_stress_ln(&self.rheology, p_mean, ln_eta, h, 0.5 * w / p_mean, u_e, v_s, ln_vs, ln_h);
         let film = share.lt(F2::splat(1.0)).select(stress / p_mean, zero);
         let asperities = share.gt(zero);
@@ -132,8 +131,7 @@ pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f
         let (rho0, rho1) = (rib::X[k], rib::X[k + 1]);
         let root = F2::new((1.0 - rho0 * rho0).max(0.0).sqrt(), (1.0 - rho1 * rho1).max(0.0).sqrt());
         let p = p_h * root;
-        let [pa, pb] = p.lanes();
-        let ln_eta = F2::new(viscosity.ln_eta(pa), viscosity.ln_eta(pb));
+        let ln_eta = ln_eta(viscosity, p);
         let (tau, ok) = thermal_eyring_stress_ln(
             r,
             p,
@@ -149,16 +147,31 @@ pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f
         let bits = ok.bits();
         let ring =
             |p: f64, root: f64| super::traction::thermal_eyring_stress_ln(r, &rib::ring(viscosity, p, root, h, a, u_e), v, ln_v, ln_h);
-        if bits & 1 == 0 {
-            ta = ring(pa, root.lanes()[0]);
-        }
-        if bits & 2 == 0 {
-            tb = ring(pb, root.lanes()[1]);
+        if bits != 3 {
+            let ([pa, pb], [ra, rb]) = (p.lanes(), root.lanes());
+            if bits & 1 == 0 {
+                ta = ring(pa, ra);
+            }
+            if bits & 2 == 0 {
+                tb = ring(pb, rb);
+            }
         }
         sum += rib::W[k] * ta * rho0;
         sum += rib::W[k + 1] * tb * rho1;
     }
     2.0 * PI * a * b * sum
+}
+
+/// `ViscosityTable::ln_eta` in both lanes (Barus' law lane-wise, Roelands' table per lane).
+#[inline(always)]
+fn ln_eta(viscosity: &ViscosityTable, p: F2) -> F2 {
+    match viscosity.barus_law() {
+        Some((ln_eta0, alpha)) => ln_eta0 + (alpha * p.max(F2::splat(0.0))).min(F2::splat(60.0)),
+        None => {
+            let [a, b] = p.lanes();
+            F2::new(viscosity.ln_eta(a), viscosity.ln_eta(b))
+        }
+    }
 }
 
 /// [`super::asperity_share`] in both lanes.
