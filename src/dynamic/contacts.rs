@@ -120,9 +120,11 @@ pub(crate) struct Constants {
     pub displacement_causality: bool,
     /// Evaluate the raceway traction two slices at a time (`slice_traction_pair`): x86-64,
     /// lubricated, thermal Eyring law. Tests switch it off for the scalar reference.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) paired_traction: bool,
     /// Evaluate the slices of a raceway without lobes two at a time (`race_slices_lanes`,
     /// x86-64). Tests switch it off (with `paired_traction`) for the scalar reference.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) lane_slices: bool,
 }
 

@@ -134,6 +134,7 @@ impl ViscosityTable {
     }
 
     /// ln eta0 and the Barus coefficient where the law is Barus' (`None`: Roelands' table).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn barus_law(&self) -> Option<(f64, f64)> {
         self.barus.map(|alpha| (self.ln_eta0, alpha))
