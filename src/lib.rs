@@ -26,6 +26,8 @@ pub mod model;
 pub mod model_description;
 pub mod quasi_static;
 pub mod rating;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod simd_math;
 pub mod simulation;
 pub mod skf_friction;
 pub mod tribology;

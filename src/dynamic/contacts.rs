@@ -118,6 +118,14 @@ pub(crate) struct Constants {
     /// holds x at 0).
     pub prescribed: [bool; 3],
     pub displacement_causality: bool,
+    /// Evaluate the raceway traction two slices at a time (`slice_traction_pair`): x86-64,
+    /// lubricated, thermal Eyring law. Tests switch it off for the scalar reference.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    pub(crate) paired_traction: bool,
+    /// Evaluate the slices of a raceway without lobes two at a time (`race_slices_lanes`,
+    /// x86-64). Tests switch it off (with `paired_traction`) for the scalar reference.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    pub(crate) lane_slices: bool,
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -267,6 +275,10 @@ impl Constants {
                 p.causality == LoadCausality::Displacement,
             ],
             displacement_causality: p.causality == LoadCausality::Displacement,
+            lane_slices: cfg!(target_arch = "x86_64"),
+            paired_traction: cfg!(target_arch = "x86_64")
+                && p.lubrication != Lubrication::Dry
+                && p.traction == tr::TractionLaw::ThermalEyring,
         }
     }
 }
@@ -508,9 +520,13 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
             asperity + viscous
         }
         tr::TractionLaw::ThermalEyring => {
-            c.lubricant
-                .rib_force(q, vs, u_e, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT), h_iso, ea, eb, ph)
-                / vs
+            let slide_roll = vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT);
+            #[cfg(target_arch = "x86_64")]
+            if c.paired_traction {
+                let film = tr::pair::rib_film_traction;
+                return c.lubricant.rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, film) / vs;
+            }
+            c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs
         }
     }
 }
@@ -571,6 +587,37 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
     if let Some(loads) = slice_loads.as_deref_mut() {
         loads.fill(0.0);
     }
+    // a slice's contribution to the sums with its traction (coef, couple)
+    let mut add = |s: &Slice, (coef, couple): (f64, f64)| {
+        let fk = s.n * s.q - s.v_t * coef;
+        sum.f += fk;
+        sum.m += s.lever.cross(&fk);
+        sum.q += s.q;
+        sum.traction -= s.v_t * coef;
+        if let Some(loads) = slice_loads.as_deref_mut() {
+            loads[s.k] = s.q;
+        }
+        sum.power += coef * s.vs * s.vs + s.damping_power.max(0.0);
+        if couple > 0.0 {
+            // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
+            // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
+            // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
+            // the roller's rotation relative to the raceway, without its spin about the normal
+            let w_roll = w_rel - s.n * w_rel.dot(&s.n);
+            let norm = (w_roll.norm_squared() + line.roll_eps2[s.k]).sqrt();
+            let m_roll = w_roll * (-couple / norm);
+            sum.m += m_roll;
+            sum.power += -m_roll.dot(&w_roll);
+        }
+        sum.extrapolated |= s.ext;
+    };
+    // the thermal Eyring law's slices two at a time (`slice_traction_pair`): `held[0]` waits
+    // for its partner while `n_held` is 1
+    #[cfg(target_arch = "x86_64")]
+    let paired = c.paired_traction;
+    let mut held = [Slice::default(); 2];
+    #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
+    let mut n_held = 0;
     for k in 0..c.s_cm.len() {
         let rad = c.radius[k] + dd - c.shrink[k];
         let cl = race.pos + race.a * c.s_cm[k];
@@ -645,31 +692,291 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
         let v_t = v_rel - n * vn;
         let ue_vec = u_c + w_e.cross(&lever);
         let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-        let vs = v_t.norm();
-        let (coef, couple) = slice_traction(c, line, k, q, vs, u_e);
-        let fk = n * q - v_t * coef;
-        sum.f += fk;
-        sum.m += lever.cross(&fk);
-        sum.q += q;
-        sum.traction -= v_t * coef;
-        if let Some(loads) = slice_loads.as_deref_mut() {
-            loads[k] = q;
+        // (written in place: the slice waiting for its partner stays where it is)
+        held[n_held] = Slice {
+            k,
+            q,
+            n,
+            lever,
+            v_t,
+            vs: v_t.norm(),
+            u_e,
+            damping_power,
+            ext,
+        };
+        // the lubricated traction of two slices at once; the others, and the last one left
+        // over, before the next slice's sums (the sums stay in slice order)
+        #[cfg(target_arch = "x86_64")]
+        {
+            if paired && held[n_held].paired() {
+                if n_held == 0 {
+                    n_held = 1;
+                } else {
+                    let [ta, tb] = slice_traction_pair(c, line, &held[0], &held[1]);
+                    add(&held[0], ta);
+                    add(&held[1], tb);
+                    n_held = 0;
+                }
+                continue;
+            }
+            if n_held == 1 {
+                add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
+            }
         }
-        sum.power += coef * vs * vs + damping_power.max(0.0);
-        if couple > 0.0 {
-            // EHL rolling resistance: the inlet pressure shifts the normal force upstream; on
-            // the roller a couple against its rolling relative to the raceway, 2 F_R R_eq, the
-            // raceway the opposite (through the race's moment sum), dissipating 2 F_R u
-            // the roller's rotation relative to the raceway, without its spin about the normal
-            let w_roll = w_rel - n * w_rel.dot(&n);
-            let norm = (w_roll.norm_squared() + line.roll_eps2[k]).sqrt();
-            let m_roll = w_roll * (-couple / norm);
-            sum.m += m_roll;
-            sum.power += -m_roll.dot(&w_roll);
-        }
-        sum.extrapolated |= ext;
+        let s = &held[n_held];
+        add(s, slice_traction(c, line, k, s.q, s.vs, s.u_e));
+        n_held = 0;
+    }
+    #[cfg(target_arch = "x86_64")]
+    if n_held == 1 {
+        add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
     }
     sum
+}
+
+/// [`race_slices`] for a raceway without lobes (extra gap `extra` everywhere, no slope) two
+/// slices at a time (x86-64): slices k and k + 1 in the two lanes of `simd_math` through the
+/// geometry, the contact law (per lane), the traction (`slice_traction_lanes`, lanes it does
+/// not take by [`slice_traction`]) and the sums, which gather the even and the odd slices
+/// apart and add them at the end. The same formulas in the same order as [`race_slices`]:
+/// the sums agree with its to rounding.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
+    use crate::simd_math::{V3x2, F2, M2};
+    let line = race.line;
+    let (r0, r1) = (line.reference[0], line.reference[1]);
+    let (n0, n1) = (line.normal[0], line.normal[1]);
+    // the velocity fields of `race_slices`
+    let ring_c = race.ring_v0 + race.ring_omega.cross(&race.pos);
+    let pt_c = race.pt_v0 + race.pt_omega.cross(&race.pos);
+    let v_c = V3x2::splat(&(race.vel - ring_c));
+    let w_rel_s = race.w - race.ring_omega;
+    let w_rel = V3x2::splat(&w_rel_s);
+    let u_c = V3x2::splat(&((race.vel + ring_c) * 0.5 - pt_c));
+    let w_e = V3x2::splat(&((race.w + race.ring_omega) * 0.5 - race.pt_omega));
+    let (pos, a) = (V3x2::splat(&race.pos), V3x2::splat(&race.a));
+    if let Some(loads) = slice_loads.as_deref_mut() {
+        loads.fill(0.0);
+    }
+    let zero = F2::splat(0.0);
+    let (mut f, mut m, mut traction) = (V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()));
+    let (mut q_sum, mut power) = (zero, zero);
+    let mut extrapolated = false;
+    let ns = c.s_cm.len();
+    let mut k = 0;
+    while k < ns {
+        // an odd last slice: lane 1 repeats it, masked out
+        let kb = (k + 1).min(ns - 1);
+        let two = M2::splat(true);
+        let lanes = if k + 1 < ns { two } else { F2::new(1.0, 0.0).gt(zero) };
+        let pick = |v: &[f64]| F2::new(v[k], v[kb]);
+        let rad = pick(&c.radius) + dd - pick(&c.shrink);
+        let cl = pos.add(&a.scale(pick(&c.s_cm)));
+        let rho_c = (cl.y * cl.y + cl.z * cl.z).sqrt();
+        // the cheap gap test
+        let bound = -((cl.x - r0) * n0 + (rho_c - r1) * n1) + rad + race.gap_max;
+        let mut live = lanes & !bound.lt(F2::splat(-1e-12));
+        if !live.any() {
+            k += 2;
+            continue;
+        }
+        let centre_off = rho_c.gt(zero);
+        let inv = 1.0 / rho_c;
+        let (ey, ez) = (centre_off.select(cl.y * inv, F2::splat(1.0)), centre_off.select(cl.z * inv, zero));
+        // deepest rim point: towards the raceway projected on the disc plane
+        let g = V3x2::new(F2::splat(-n0), -(ey * n1), -(ez * n1));
+        let d = g.sub(&a.scale(g.dot(&a)));
+        let dn = d.norm();
+        live = live & !dn.le(zero);
+        let d = d.scale(1.0 / dn);
+        let pl = cl.add(&d.scale(rad));
+        let rho_p = (pl.y * pl.y + pl.z * pl.z).sqrt();
+        let point_off = rho_p.gt(zero);
+        let (py, pz) = (point_off.select(pl.y / rho_p, F2::splat(1.0)), point_off.select(pl.z / rho_p, zero));
+        let delta = -((pl.x - r0) * n0 + (rho_p - r1) * n1) + extra;
+        live = live & !delta.le(zero);
+        let bits = live.bits();
+        if bits == 0 {
+            k += 2;
+            continue;
+        }
+        // the contact law per lane
+        let [da, db] = delta.lanes();
+        let (qa, dqa, xa) = if bits & 1 != 0 { line.law.load(k, da) } else { (0.0, 0.0, false) };
+        let (qb, dqb, xb) = if bits & 2 != 0 { line.law.load(kb, db) } else { (0.0, 0.0, false) };
+        extrapolated |= xa | xb;
+        let (q_el, dq) = (F2::new(qa, qb), F2::new(dqa, dqb));
+        let n = V3x2::new(F2::splat(n0), py * n1, pz * n1);
+        let lever = pl.sub(&pos);
+        let v_rel = v_c.add(&w_rel.cross(&lever));
+        let vn = v_rel.dot(&n);
+        let c_damp = c.damping_factor * dq.sqrt();
+        let q = live.select((q_el - c_damp * vn).max(zero), zero);
+        let damping_power = (q - q_el) * (-vn);
+        let v_t = v_rel.sub(&n.scale(vn));
+        let ue_vec = u_c.add(&w_e.cross(&lever));
+        let u_e = ue_vec.sub(&n.scale(ue_vec.dot(&n))).norm();
+        let vs = v_t.norm();
+        // traction: both lanes two at a time where the two-lane law takes them
+        let regular = q.gt(zero)
+            & vs.gt(zero)
+            & u_e.ge(F2::splat(1e-6))
+            & q.lt(F2::splat(f64::INFINITY))
+            & vs.lt(F2::splat(f64::INFINITY))
+            & u_e.lt(F2::splat(f64::INFINITY));
+        let (mut coef, mut couple, mut done) = (zero, zero, !live);
+        if c.paired_traction && regular.any() {
+            let (cf, cp, ok) = slice_traction_lanes(
+                c,
+                line,
+                [k, kb],
+                regular.select(q, F2::splat(1.0)),
+                regular.select(vs, F2::splat(1.0)),
+                regular.select(u_e, F2::splat(1.0)),
+            );
+            let took = regular & ok;
+            (coef, couple, done) = (took.select(cf, zero), took.select(cp, zero), done | took);
+        }
+        let done_bits = done.bits();
+        if done_bits != 3 {
+            let ([qa, qb], [va, vb], [ua, ub]) = (q.lanes(), vs.lanes(), u_e.lanes());
+            let ([mut ca, mut cb], [mut pa, mut pb]) = (coef.lanes(), couple.lanes());
+            if done_bits & 1 == 0 {
+                (ca, pa) = slice_traction(c, line, k, qa, va, ua);
+            }
+            if done_bits & 2 == 0 {
+                (cb, pb) = slice_traction(c, line, kb, qb, vb, ub);
+            }
+            (coef, couple) = (F2::new(ca, cb), F2::new(pa, pb));
+        }
+        // the sums (dead lanes add nothing)
+        let fk = n.scale(q).sub(&v_t.scale(coef)).masked(live);
+        f = f.add(&fk);
+        m = m.add(&lever.cross(&fk).masked(live));
+        q_sum = q_sum + q;
+        traction = traction.sub(&v_t.scale(coef).masked(live));
+        power = power + live.select(coef * vs * vs + damping_power.max(zero), zero);
+        let rolls = live & couple.gt(zero);
+        if rolls.any() {
+            // EHL rolling resistance (see `race_slices`)
+            let w_roll = w_rel.sub(&n.scale(w_rel.dot(&n)));
+            let norm = (w_roll.norm_squared() + pick(&line.roll_eps2)).sqrt();
+            let m_roll = w_roll.scale(-couple / norm).masked(rolls);
+            m = m.add(&m_roll);
+            power = power + rolls.select(-m_roll.dot(&w_roll), zero);
+        }
+        if let Some(loads) = slice_loads.as_deref_mut() {
+            let [qa, qb] = q.lanes();
+            if bits & 1 != 0 {
+                loads[k] = qa;
+            }
+            if bits & 2 != 0 {
+                loads[kb] = qb;
+            }
+        }
+        k += 2;
+    }
+    LineSum {
+        f: f.lane_sum(),
+        m: m.lane_sum(),
+        q: q_sum.lane_sum(),
+        traction: traction.lane_sum(),
+        power: power.lane_sum(),
+        extrapolated,
+    }
+}
+
+/// A touching slice of [`race_slices`] as its traction and the sums take it: index, normal
+/// load, raceway normal, lever from the centre of mass, tangential relative velocity and its
+/// norm, entrainment speed, damping power, extrapolated contact law.
+#[derive(Clone, Copy, Default)]
+struct Slice {
+    k: usize,
+    q: f64,
+    n: V3,
+    lever: V3,
+    v_t: V3,
+    vs: f64,
+    u_e: f64,
+    damping_power: f64,
+    ext: bool,
+}
+
+impl Slice {
+    /// Whether [`slice_traction_pair`] takes this slice: loaded, sliding and entrained (the
+    /// full law of [`slice_traction`], not one of its special cases), finite.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn paired(&self) -> bool {
+        self.q > 0.0 && self.vs > 0.0 && self.u_e >= 1e-6 && self.q.is_finite() && self.vs.is_finite() && self.u_e.is_finite()
+    }
+}
+
+/// [`slice_traction`] of two slices at once (`slice_traction_lanes`), a lane outside the
+/// two-lane kernels' range by the scalar code: (coef, couple) of `a` and of `b`.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
+    use crate::simd_math::F2;
+    let (q, vs, u_e) = (F2::new(a.q, b.q), F2::new(a.vs, b.vs), F2::new(a.u_e, b.u_e));
+    let (coef, couple, ok) = slice_traction_lanes(c, line, [a.k, b.k], q, vs, u_e);
+    let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
+    [
+        if bits & 1 != 0 {
+            (ca, pa)
+        } else {
+            slice_traction(c, line, a.k, a.q, a.vs, a.u_e)
+        },
+        if bits & 2 != 0 {
+            (cb, pb)
+        } else {
+            slice_traction(c, line, b.k, b.q, b.vs, b.u_e)
+        },
+    ]
+}
+
+/// [`slice_traction`] with the thermal Eyring law in two lanes (x86-64, `simd_math`;
+/// `tribology::pair`), slices `k` with load `q`, sliding speed `vs`, entrainment speed `u_e`
+/// that [`Slice::paired`] takes: the same formulas in the same order. (coef, couple, the
+/// lanes within the two-lane kernels' range: the others want the scalar code.)
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn slice_traction_lanes(
+    c: &Constants,
+    line: &LineConst,
+    [ka, kb]: [usize; 2],
+    q: crate::simd_math::F2,
+    vs: crate::simd_math::F2,
+    u_e: crate::simd_math::F2,
+) -> (crate::simd_math::F2, crate::simd_math::F2, crate::simd_math::M2) {
+    use crate::simd_math::{self as sm, F2, M2};
+    let w = q * c.inv_slice_len;
+    let (ln_ue, ln_w) = (sm::ln(u_e), sm::ln(w));
+    let ln_h_iso = F2::new(line.ln_film[ka], line.ln_film[kb]) + 0.692 * ln_ue - 0.166 * ln_w;
+    let p_mean = (w * F2::new(line.k_pmean[ka], line.k_pmean[kb])).sqrt();
+    let ln_vs = sm::ln(vs);
+    let (heating, mut ok) = if c.ln_inlet_heating > f64::NEG_INFINITY {
+        tr::pair::thermal_reduction_ln(c.ln_inlet_heating + 2.0 * ln_ue, 4.0 / PI * p_mean / c.e_prime, ln_vs - ln_ue)
+    } else {
+        (F2::splat(1.0), M2::splat(true))
+    };
+    ok = ok & tr::pair::exp_range(ln_h_iso);
+    let (h, ln_h) = (heating * sm::exp(ln_h_iso), ln_h_iso + sm::ln(heating));
+    let boundary_slide_roll = vs / u_e.max(F2::splat(MIN_BOUNDARY_ENTRAINMENT));
+    let (mu, film_ok) = c
+        .lubricant
+        .raceway_mu_film_pair(w, p_mean, h, ln_h, u_e, vs, ln_vs, boundary_slide_roll);
+    ok = ok & film_ok;
+    let coef = mu * q / vs;
+    let couple = if c.rolling_resistance {
+        let ln_couple = F2::new(line.ln_roll[ka], line.ln_roll[kb]) + 0.648 * ln_ue + 0.246 * ln_w;
+        ok = ok & tr::pair::exp_range(ln_couple);
+        heating * sm::exp(ln_couple)
+    } else {
+        F2::splat(0.0)
+    };
+    (coef, couple, ok)
 }
 
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
@@ -761,6 +1068,13 @@ pub(crate) fn evaluate(
             })
         } else {
             let gap = -c.half_clearance * c.cos_o;
+            #[cfg(target_arch = "x86_64")]
+            if c.lane_slices {
+                race_slices_lanes(c, &cup, dd, cup_loads, gap)
+            } else {
+                race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
+            }
+            #[cfg(not(target_arch = "x86_64"))]
             race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
         };
         // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
@@ -776,6 +1090,13 @@ pub(crate) fn evaluate(
             pt_omega: x_l * psid,
             gap_max: 0.0,
         };
+        #[cfg(target_arch = "x86_64")]
+        let cone_sum = if c.lane_slices {
+            race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
+        } else {
+            race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
+        };
+        #[cfg(not(target_arch = "x86_64"))]
         let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
         let (f_cone_r, m_cone_r) = (rot * cone_sum.f, rot * cone_sum.m);
         tot.p_raceway += cup_sum.power + cone_sum.power;

@@ -500,7 +500,8 @@ fn explore_switches() {
 }
 
 /// N right-hand-side evaluations at the initial state of the [W25] case (for profiling with
-/// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`).
+/// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`;
+/// the cost of one is the difference of the runs with RHS_N=51 and RHS_N=1).
 #[test]
 #[ignore]
 fn rhs_cost() {
@@ -510,6 +511,11 @@ fn rhs_cost() {
     p.fidelity = crate::model::Fidelity::Dynamic;
     let i = crate::model::Inputs::from_bearing(&b);
     let (mut d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+    // RHS_SCALAR=1: the raceway traction slice by slice (the reference of the two-lane path)
+    if std::env::var("RHS_SCALAR").is_ok() {
+        d.c.paired_traction = false;
+        d.c.lane_slices = false;
+    }
     let mut dy = vec![0.0; st.y.len()];
     d.rhs(&i, &st.y, &mut dy);
     let t0 = std::time::Instant::now();
@@ -602,6 +608,7 @@ fn explore_spectrum() {
 
 /// Right-hand sides and outputs at a set of states, written to (SNAP_WRITE=1) or compared
 /// with /tmp/trb_snap: a check that a rewrite of the right-hand side changes it only by rounding.
+/// SNAP_SCALAR=1: with the raceway traction slice by slice (`Constants::paired_traction` off).
 #[test]
 #[ignore]
 fn rhs_snapshot() {
@@ -640,6 +647,10 @@ fn rhs_snapshot() {
         let mut i = Inputs::from_bearing(&b);
         setup(&mut p, &mut i);
         let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        if std::env::var("SNAP_SCALAR").is_ok() {
+            d.c.paired_traction = false;
+            d.c.lane_slices = false;
+        }
         let mut out = Outputs::new(b.roller_count);
         for t_end in [0.0, 1e-3] {
             if name == "d19" && t_end > 0.0 {
@@ -1002,5 +1013,113 @@ fn explore_sweep() {
                 t0.elapsed().as_secs_f64()
             );
         }
+    }
+}
+
+/// The raceway slices two at a time (`Constants::lane_slices`) and their traction two at a
+/// time (`Constants::paired_traction`, x86-64) against the scalar loop and law slice by
+/// slice: the traction forces agree to 1e-12, the derivative to 1e-14 of the scale of the forces
+/// each row sums (a roller's acceleration rows are near-cancelling sums of its contact loads:
+/// the scale is its raceway and flange load over its mass, times the roller length over the
+/// transverse inertia for the angular ones; the cone's the total load over the cone mass).
+/// Rows without raceway traction (positions, cage) agree bit for bit. States: the [W25] start
+/// and 1 ms on, combined load with misalignment, a mixed film (rough surfaces), no inlet
+/// heating, low speed, Roelands' viscosity, a lobed cup (its slices one at a time, the traction paired), an odd
+/// slice count, and the laws without the two-lane traction (dry, `traction` = 1).
+#[test]
+fn paired_traction_agrees_with_the_scalar_law() {
+    use crate::model::{Fidelity, Inputs, Lubrication, Parameters};
+    use crate::tribology::TractionLaw;
+    type Setup = fn(&mut Parameters, &mut Inputs);
+    let cases: Vec<(&str, f64, Setup)> = vec![
+        ("w25", 0.0, |_, _| {}),
+        ("w25 after 1 ms", 1e-3, |_, _| {}),
+        ("combined, misaligned", 0.0, |_, i| {
+            i.fy = 25e3;
+            i.xi = 0.004_f64.to_radians();
+            i.zeta = -0.002_f64.to_radians();
+        }),
+        ("mixed film", 0.0, |p, i| {
+            p.roughness = 1.5e-6;
+            i.fy = 10e3;
+        }),
+        ("boundary", 0.0, |p, _| p.roughness = 2e-5),
+        ("no inlet heating", 0.0, |p, _| p.oil_beta = 0.0),
+        ("100 rpm", 0.0, |_, i| i.speed = 100.0 * RPM),
+        ("lobed cup", 0.0, |p, i| {
+            p.outer_lobes = 3;
+            p.outer_waveform = 4e-6;
+            i.fy = 10e3;
+        }),
+        ("Roelands viscosity", 0.0, |p, i| {
+            p.piezoviscosity = crate::tribology::Piezoviscosity::Roelands;
+            i.fy = 10e3;
+        }),
+        ("11 slices", 0.0, |p, i| {
+            p.slices = 11;
+            i.fy = 10e3;
+        }),
+        ("dry", 0.0, |p, i| {
+            p.lubrication = Lubrication::Dry;
+            i.fy = 5e3;
+        }),
+        ("traction 1", 0.0, |p, i| {
+            p.traction = TractionLaw::NewtonianEyring;
+            i.fy = 10e3;
+        }),
+    ];
+    for (name, t_end, setup) in cases {
+        let b = Bearing::default_preset();
+        let mut p = Parameters::from_bearing(&b);
+        p.fidelity = Fidelity::Dynamic;
+        let mut i = Inputs::from_bearing(&b);
+        setup(&mut p, &mut i);
+        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        if t_end > 0.0 {
+            d.advance(&mut st, &i, t_end).unwrap();
+        }
+        let n = st.y.len();
+        let (mut fast, mut slow) = (vec![0.0; n], vec![0.0; n]);
+        d.rhs(&i, &st.y, &mut fast);
+        let fast_sliding: Vec<f64> = d.records.iter().map(|r| r.sliding).collect();
+        let paired = d.c.paired_traction;
+        d.c.paired_traction = false;
+        d.c.lane_slices = false;
+        d.rhs(&i, &st.y, &mut slow);
+        let (m_r, i_t, len) = (d.g.roller_mass, d.g.inertia_transverse, d.g.length);
+        let loads: Vec<f64> = d.records.iter().map(|r| r.qi + r.qo + r.qf).collect();
+        let mut worst: f64 = 0.0;
+        for k in 0..n {
+            let (a, s) = (fast[k], slow[k]);
+            let scale = if k < super::ROLLERS {
+                if (super::CONE + 3..super::CONE + 6).contains(&k) {
+                    loads.iter().sum::<f64>() / d.p.cone_mass
+                } else {
+                    0.0
+                }
+            } else {
+                let (j, row) = ((k - super::ROLLERS) / super::PER_ROLLER, (k - super::ROLLERS) % super::PER_ROLLER);
+                match row {
+                    3 | 4 => loads[j] / m_r,
+                    5 => loads[j] / (m_r * d.g.center[1]),
+                    8..=10 => loads[j] * len / i_t,
+                    _ => 0.0,
+                }
+            };
+            if scale == 0.0 {
+                assert_eq!(a.to_bits(), s.to_bits(), "{name}: row {k} {a} vs {s}");
+            } else {
+                worst = worst.max((a - s).abs() / scale);
+            }
+        }
+        // the traction forces themselves (each roller's sum of |traction| of its contacts)
+        let sliding_worst = fast_sliding
+            .iter()
+            .zip(&d.records)
+            .map(|(a, r)| (a - r.sliding).abs() / r.sliding)
+            .fold(0.0, f64::max);
+        println!("{name}: paired {paired}, worst difference {worst:.2e} of the row's force scale, traction {sliding_worst:.2e}");
+        assert!(worst <= 1e-14, "{name}: {worst:e}");
+        assert!(sliding_worst <= 1e-12, "{name}: traction {sliding_worst:e}");
     }
 }

@@ -4,8 +4,8 @@
 //! Palmgren: one ln and one exp) and accumulates six sums. The scalar loop
 //! (`QuasiStatic::line_sums_with`) spends most of its instructions in the table-based `ln` of
 //! `fastmath`, which does not vectorise (table look-ups). Here ln and exp are fdlibm's
-//! polynomial forms (Sun's e_log.c / e_exp.c, error below 1 ulp, no tables), evaluated in both
-//! lanes at once; unloaded slices are masked instead of branched over.
+//! polynomial forms (`crate::simd_math`: Sun's e_log.c / e_exp.c, error below 1 ulp, no
+//! tables), evaluated in both lanes at once; unloaded slices are masked instead of branched over.
 //!
 //! What differs from the scalar loop: the logarithm and exponential round differently (both
 //! are within 1 ulp of the exact value), and the six sums are accumulated separately over
@@ -15,6 +15,8 @@
 //! `None` and the scalar loop does the line.
 
 use super::{LineSums, SliceTable};
+#[cfg(target_arch = "x86_64")]
+use crate::simd_math::{exp_pd, ln_pd};
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::*;
@@ -26,118 +28,6 @@ pub(super) enum Law<'a> {
     Johnson { c: f64, ln_8r: &'a [f64] },
     /// q = k delta^(10/9).
     Palmgren { k: f64 },
-}
-
-// fdlibm e_log.c
-const LG1: f64 = 6.666_666_666_666_735_13e-01;
-const LG2: f64 = 3.999_999_999_940_941_908e-01;
-const LG3: f64 = 2.857_142_874_366_239_149e-01;
-const LG4: f64 = 2.222_219_843_214_978_396e-01;
-const LG5: f64 = 1.818_357_216_161_805_012e-01;
-const LG6: f64 = 1.531_383_769_920_937_332e-01;
-const LG7: f64 = 1.479_819_860_511_658_591e-01;
-const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-01;
-const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
-// fdlibm e_exp.c
-const P1: f64 = 1.666_666_666_666_660_190_37e-01;
-const P2: f64 = -2.777_777_777_701_559_338_42e-03;
-const P3: f64 = 6.613_756_321_437_934_361_17e-05;
-const P4: f64 = -1.653_390_220_546_525_153_90e-06;
-const P5: f64 = 4.138_136_797_057_238_460_39e-08;
-/// 1.5 * 2^52: adding and subtracting it rounds to the nearest integer.
-const ROUNDER: f64 = 6_755_399_441_055_744.0;
-
-/// ln x in both lanes, x positive, normal and finite (fdlibm's algorithm, < 1 ulp).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-unsafe fn ln_pd(x: __m128d) -> __m128d {
-    let bits = _mm_castpd_si128(x);
-    // exponent as a double: (2^52 + biased exponent) - (2^52 + 1023)
-    let e_bits = _mm_or_si128(_mm_srli_epi64::<52>(bits), _mm_castpd_si128(_mm_set1_pd(4_503_599_627_370_496.0)));
-    let mut k = _mm_sub_pd(_mm_castsi128_pd(e_bits), _mm_set1_pd(4_503_599_627_370_496.0 + 1023.0));
-    // mantissa in [1, 2)
-    let m_bits = _mm_or_si128(
-        _mm_and_si128(bits, _mm_set1_epi64x(0x000f_ffff_ffff_ffff)),
-        _mm_set1_epi64x(0x3ff0_0000_0000_0000),
-    );
-    let mut m = _mm_castsi128_pd(m_bits);
-    // into [sqrt(2)/2, sqrt(2)): halve (exactly) above sqrt(2)
-    let big = _mm_cmpgt_pd(m, _mm_set1_pd(std::f64::consts::SQRT_2));
-    m = _mm_or_pd(_mm_and_pd(big, _mm_mul_pd(m, _mm_set1_pd(0.5))), _mm_andnot_pd(big, m));
-    k = _mm_add_pd(k, _mm_and_pd(big, _mm_set1_pd(1.0)));
-    let f = _mm_sub_pd(m, _mm_set1_pd(1.0));
-    let s = _mm_div_pd(f, _mm_add_pd(_mm_set1_pd(2.0), f));
-    let z = _mm_mul_pd(s, s);
-    let w = _mm_mul_pd(z, z);
-    let set = |v: f64| _mm_set1_pd(v);
-    let t1 = _mm_mul_pd(
-        w,
-        _mm_add_pd(set(LG2), _mm_mul_pd(w, _mm_add_pd(set(LG4), _mm_mul_pd(w, set(LG6))))),
-    );
-    let t2 = _mm_mul_pd(
-        z,
-        _mm_add_pd(
-            set(LG1),
-            _mm_mul_pd(
-                w,
-                _mm_add_pd(set(LG3), _mm_mul_pd(w, _mm_add_pd(set(LG5), _mm_mul_pd(w, set(LG7))))),
-            ),
-        ),
-    );
-    let r = _mm_add_pd(t2, t1);
-    let hfsq = _mm_mul_pd(_mm_mul_pd(set(0.5), f), f);
-    // k ln2_hi - ((hfsq - (s (hfsq + R) + k ln2_lo)) - f)
-    let inner = _mm_add_pd(_mm_mul_pd(s, _mm_add_pd(hfsq, r)), _mm_mul_pd(k, set(LN2_LO)));
-    _mm_sub_pd(_mm_mul_pd(k, set(LN2_HI)), _mm_sub_pd(_mm_sub_pd(hfsq, inner), f))
-}
-
-/// exp y in both lanes for |y| < 700 (fdlibm's algorithm, < 1 ulp).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-unsafe fn exp_pd(y: __m128d) -> __m128d {
-    let set = |v: f64| _mm_set1_pd(v);
-    let t = _mm_add_pd(_mm_mul_pd(y, set(std::f64::consts::LOG2_E)), set(ROUNDER));
-    let k = _mm_sub_pd(t, set(ROUNDER));
-    let hi = _mm_sub_pd(y, _mm_mul_pd(k, set(LN2_HI)));
-    let lo = _mm_mul_pd(k, set(LN2_LO));
-    let r = _mm_sub_pd(hi, lo);
-    let r2 = _mm_mul_pd(r, r);
-    let poly = _mm_add_pd(
-        set(P1),
-        _mm_mul_pd(
-            r2,
-            _mm_add_pd(
-                set(P2),
-                _mm_mul_pd(
-                    r2,
-                    _mm_add_pd(set(P3), _mm_mul_pd(r2, _mm_add_pd(set(P4), _mm_mul_pd(r2, set(P5))))),
-                ),
-            ),
-        ),
-    );
-    let c = _mm_sub_pd(r, _mm_mul_pd(r2, poly));
-    // 1 - ((lo - r c / (2 - c)) - hi)
-    let q = _mm_div_pd(_mm_mul_pd(r, c), _mm_sub_pd(set(2.0), c));
-    let e = _mm_sub_pd(set(1.0), _mm_sub_pd(_mm_sub_pd(lo, q), hi));
-    // times 2^k: k is in the low bits of t (t = 1.5 2^52 + k)
-    let ki = _mm_sub_epi64(_mm_castpd_si128(t), _mm_castpd_si128(set(ROUNDER)));
-    _mm_castsi128_pd(_mm_add_epi64(_mm_castpd_si128(e), _mm_slli_epi64::<52>(ki)))
-}
-
-/// ln of every value of `x` with the kernel's logarithm (tests).
-#[cfg(all(test, target_arch = "x86_64"))]
-pub(super) fn ln2(x: [f64; 2]) -> [f64; 2] {
-    let mut out = [0.0; 2];
-    unsafe { _mm_storeu_pd(out.as_mut_ptr(), ln_pd(_mm_loadu_pd(x.as_ptr()))) };
-    out
-}
-
-/// exp of every value of `y` with the kernel's exponential (tests).
-#[cfg(all(test, target_arch = "x86_64"))]
-pub(super) fn exp2(y: [f64; 2]) -> [f64; 2] {
-    let mut out = [0.0; 2];
-    unsafe { _mm_storeu_pd(out.as_mut_ptr(), exp_pd(_mm_loadu_pd(y.as_ptr()))) };
-    out
 }
 
 /// The sums of one contact line (see `QuasiStatic::line_sums`), two slices at a time; slice
@@ -356,45 +246,5 @@ pub(super) fn film_prepass(
             }
             k += 2;
         }
-    }
-}
-
-#[cfg(all(test, target_arch = "x86_64"))]
-mod tests {
-    use super::*;
-
-    fn ulps(a: f64, b: f64) -> f64 {
-        ((a - b) / (b.abs() * f64::EPSILON)).abs()
-    }
-
-    #[test]
-    fn vector_ln_and_exp_are_within_an_ulp_or_two() {
-        let mut worst: f64 = 0.0;
-        let mut x = 1e-300_f64;
-        while x < 1e300 {
-            for f in [1.0, 1.000_000_1, 1.37, 1.414_213_5, 1.414_213_6, 1.5, 1.999_999] {
-                let v = x * f;
-                let [a, b] = ln2([v, v * 1.1]);
-                for (got, arg) in [(a, v), (b, v * 1.1)] {
-                    let want = libm::log(arg);
-                    let err = if want.abs() > 1e-3 {
-                        ulps(got, want)
-                    } else {
-                        (got - want).abs() / f64::EPSILON
-                    };
-                    worst = worst.max(err);
-                }
-            }
-            x *= 1.7;
-        }
-        assert!(worst < 2.0, "ln worst {worst} ulp");
-        let mut worst: f64 = 0.0;
-        let mut y = -699.0;
-        while y < 699.0 {
-            let [a, b] = exp2([y, -y * 0.37]);
-            worst = worst.max(ulps(a, libm::exp(y))).max(ulps(b, libm::exp(-y * 0.37)));
-            y += 0.0137;
-        }
-        assert!(worst < 2.0, "exp worst {worst} ulp");
     }
 }

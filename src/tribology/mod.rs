@@ -6,6 +6,7 @@
 //!   the inlet shear-heating reduction of Gupta et al. (1992);
 //! - `traction.rs`: full-film traction laws (parameter `traction`): the thermal Eyring film
 //!   with elastic entry and limiting shear (default), or the isothermal Newtonian Eyring law;
+//! - `pair.rs`: the raceway traction of two slices at once (x86-64, the dynamic model's);
 //! - `rib.rs`: the roller end on the rib: asperity and film shares from the film ratio;
 //! - here: the boundary law of [W25] (Kragelskii), the [W25] sixth-power blend of the mixed
 //!   regime, the EHL rolling resistance and dry Coulomb friction [D19].
@@ -15,6 +16,8 @@
 //! constants are the oil's (documented defaults in docs/model.md, "Oil traction data").
 
 pub mod film;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod pair;
 pub mod rib;
 pub mod traction;
 pub mod viscosity;
@@ -144,19 +147,20 @@ impl Lubricant {
     /// [`Lubricant::raceway_mu`].
     #[allow(clippy::too_many_arguments)]
     pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, false)
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
     }
 
     /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
     /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
     #[allow(clippy::too_many_arguments)]
     pub fn rib_force_halley(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, true)
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib::rib_film_traction_halley)
     }
 
+    /// [`Lubricant::rib_force`] with the rib film's force `film` (as `rib::rib_film_traction`).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn rib_force_with(
+    pub(crate) fn rib_force_with(
         &self,
         q: f64,
         v_s: f64,
@@ -166,7 +170,7 @@ impl Lubricant {
         a: f64,
         b: f64,
         p_h: f64,
-        halley: bool,
+        film: RibFilm,
     ) -> f64 {
         if !(q > 0.0) {
             return 0.0;
@@ -184,18 +188,16 @@ impl Lubricant {
             0.0
         };
         let film = if share < 1.0 && v_s > 0.0 {
-            (1.0 - share)
-                * if halley {
-                    rib::rib_film_traction_halley(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
-                } else {
-                    rib_film_traction(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
-                }
+            (1.0 - share) * film(&self.rheology, &self.viscosity, v_s, h, u_e, a, b, p_h)
         } else {
             0.0
         };
         boundary + film
     }
 }
+
+/// The rib film's traction force as `rib::rib_film_traction` takes its arguments.
+pub(crate) type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
 pub fn boundary_mu(slide_roll: f64) -> f64 {

@@ -21,7 +21,7 @@ use std::f64::consts::PI;
 
 /// Gauss-Legendre nodes and weights on [0, 1] (8 points) for the radial integral over the
 /// unit disc; the integrand depends on the radius only.
-const X: [f64; 8] = [
+pub(crate) const X: [f64; 8] = [
     0.019_855_071_751_231_856,
     0.101_666_761_293_186_63,
     0.237_233_795_041_835_5,
@@ -31,7 +31,7 @@ const X: [f64; 8] = [
     0.898_333_238_706_813_4,
     0.980_144_928_248_768_2,
 ];
-const W: [f64; 8] = [
+pub(crate) const W: [f64; 8] = [
     0.050_614_268_145_188_13,
     0.111_190_517_226_687_24,
     0.156_853_322_938_943_64,
@@ -133,22 +133,28 @@ fn rib_film_traction_with<S: Fn(&Rheology, &FilmContact, f64, f64, f64) -> f64>(
         let rho = X[k];
         let root = (1.0 - rho * rho).max(0.0).sqrt();
         let p = p_h * root;
-        let contact = FilmContact {
-            pressure: p,
-            ln_eta: viscosity.ln_eta(p),
-            film: h,
-            // the chord along the entrainment through this ring of the ellipse
-            half_width: a * root,
-            entrainment: u_e,
-        };
         let tau = if v > 0.0 && p > 0.0 {
-            stress(rheology, &contact, v, ln_v, ln_h)
+            stress(rheology, &ring(viscosity, p, root, h, a, u_e), v, ln_v, ln_h)
         } else {
             0.0
         };
         sum += W[k] * tau * rho;
     }
     2.0 * PI * a * b * sum
+}
+
+/// The film of the Gauss ring at pressure `p` = p_h `root` of an ellipse with semi-axis `a`
+/// along the entrainment (speed `u_e`), film `h`.
+#[inline(always)]
+pub(crate) fn ring(viscosity: &ViscosityTable, p: f64, root: f64, h: f64, a: f64, u_e: f64) -> FilmContact {
+    FilmContact {
+        pressure: p,
+        ln_eta: viscosity.ln_eta(p),
+        film: h,
+        // the chord along the entrainment through this ring of the ellipse
+        half_width: a * root,
+        entrainment: u_e,
+    }
 }
 
 /// Share of the load carried by asperities in the [W25] regime law at film ratio `lambda`:

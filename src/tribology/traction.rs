@@ -137,7 +137,8 @@ pub fn thermal_eyring_stress_ln(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: 
 /// forms of the two regimes). The same stress to rounding: both solvers stop once a step is
 /// below 1e-9 y, i.e. at the root to machine precision; Halley's gets there in 2-3
 /// evaluations of asinh(e^g) where Newton's takes 4-5 (the [W25] raceway slices). The
-/// quasi-static model's; the dynamic model keeps Newton's (its results unchanged).
+/// quasi-static model's, and the dynamic model's two-lane kernel's (`pair.rs`); the dynamic
+/// model's scalar law (other architectures, the tests' reference) keeps Newton's.
 #[inline(always)]
 pub fn thermal_eyring_stress_ln_halley(r: &Rheology, c: &FilmContact, v_s: f64, ln_vs: f64, ln_h: f64) -> f64 {
     thermal_eyring_stress_with(r, c, v_s, ln_vs, ln_h, solve_thermal_eyring_halley)

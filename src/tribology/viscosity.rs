@@ -133,6 +133,13 @@ impl ViscosityTable {
         fm::exp(self.ln_eta[k] + f * (self.ln_eta[k + 1] - self.ln_eta[k]))
     }
 
+    /// ln eta0 and the Barus coefficient where the law is Barus' (`None`: Roelands' table).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn barus_law(&self) -> Option<(f64, f64)> {
+        self.barus.map(|alpha| (self.ln_eta0, alpha))
+    }
+
     /// ln of [`ViscosityTable::eta`] (the interpolated logarithm itself inside the table).
     #[inline(always)]
     pub fn ln_eta(&self, p: f64) -> f64 {
