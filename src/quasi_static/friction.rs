@@ -142,50 +142,11 @@ struct SpeedCache {
     speed: f64,
     cone: Vec<SliceConst>,
     cup: Vec<SliceConst>,
-    /// The same constants as arrays for the two-lane pre-pass (`simd::film_prepass`), used
-    /// where every slice of the line is entrained.
-    cone_film: super::simd::FilmConsts,
-    cup_film: super::simd::FilmConsts,
     /// Traction coefficient and rolling resistance per unit load of every slice position of
     /// both raceways (cone lines, then cup lines), and the flange's friction force per unit
     /// load, at this speed, tabulated over the load as the solves need them (fidelity 0).
     raceways: LoadTable,
     flange: LoadTable,
-}
-
-/// Largest slice count of the two-lane pre-pass (its scratch arrays live on the stack).
-const PREPASS_SLICES: usize = 64;
-
-/// [`SliceConst`]s of one line as arrays (`simd::FilmConsts`, padded to an even length); empty
-/// where a slice is not entrained (the pre-pass does not apply).
-fn film_consts(consts: &[SliceConst], r_bar: &[f64], out: &mut super::simd::FilmConsts) {
-    let n = consts.len();
-    let padded = (n + 1) & !1;
-    let all = [
-        &mut out.r_bar,
-        &mut out.l042,
-        &mut out.heat_den,
-        &mut out.film_a,
-        &mut out.e_r,
-        &mut out.roll_a,
-        &mut out.e_r_l,
-    ];
-    for a in all {
-        a.clear();
-    }
-    if n > PREPASS_SLICES || consts.iter().any(|c| !(c.u_e > 0.0)) {
-        return;
-    }
-    for k in 0..padded {
-        let c = consts.get(k).copied().unwrap_or(consts[n - 1]);
-        out.r_bar.push(r_bar[k.min(n - 1)]);
-        out.l042.push(if c.heated { c.l042 } else { 0.0 });
-        out.heat_den.push(if c.heated { c.heat_den } else { 1.0 });
-        out.film_a.push(c.film_a);
-        out.e_r.push(c.e_r);
-        out.roll_a.push(if c.rolls { c.roll_a } else { 0.0 });
-        out.e_r_l.push(if c.rolls { c.e_r_l } else { 1.0 });
-    }
 }
 
 /// Precomputed kinematics and oil data.
@@ -416,63 +377,6 @@ impl FrictionModel {
         f
     }
 
-    /// [`FrictionModel::raceway_sliced`] at fidelity 0: the load-dependent film, pressure,
-    /// inlet heating and rolling resistance of all loaded slices first, two at a time
-    /// (`simd::film_prepass`, where `film` applies), then each slice's traction (Halley's
-    /// solver) and the sums in slice order.
-    fn raceway_sliced_fast(
-        &self,
-        line: &ContactLine,
-        weights: &SliceWeights,
-        consts: &[SliceConst],
-        film: &super::simd::FilmConsts,
-        loads: &[f64],
-        speed: f64,
-    ) -> RacewayFriction {
-        #[cfg(target_arch = "x86_64")]
-        if !film.r_bar.is_empty() && !consts.is_empty() {
-            let n = consts.len();
-            let mut w = [0.0; PREPASS_SLICES];
-            let mut p_mean = [0.0; PREPASS_SLICES];
-            let mut h = [0.0; PREPASS_SLICES];
-            let mut ln_h = [0.0; PREPASS_SLICES];
-            let mut rolling = [0.0; PREPASS_SLICES];
-            super::simd::film_prepass(
-                film,
-                n,
-                loads,
-                self.slice_len,
-                self.lubricant.e_prime,
-                &mut w,
-                &mut p_mean,
-                &mut h,
-                &mut ln_h,
-                &mut rolling,
-            );
-            let sign = if speed < 0.0 { -1.0 } else { 1.0 };
-            let mut f = RacewayFriction::default();
-            for (k, &q) in loads.iter().enumerate().take(n) {
-                if !(q > 0.0) {
-                    continue;
-                }
-                let c = &consts[k];
-                let mu = if w[k] > 0.0 {
-                    let ln_h = if h[k] > 0.0 { ln_h[k] } else { f64::NEG_INFINITY };
-                    self.lubricant
-                        .raceway_mu_film_halley(w[k], p_mean[k], h[k], ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
-                } else {
-                    0.0
-                };
-                f.torque += mu * q * weights.slide[k] + 2.0 * rolling[k] * weights.entrain[k];
-                f.skew += mu * q * sign * weights.skew[k];
-                f.slide_force += mu * q * sign * weights.sign[k];
-                f.rolling += rolling[k];
-            }
-            return f;
-        }
-        self.raceway_sliced::<true>(line, weights, consts, loads, speed)
-    }
-
     /// [`FrictionModel::raceway_sliced`] at fidelity 0 with the slice laws read from `table`
     /// (lines `first`.. for this raceway's slice positions): the traction coefficient and the
     /// rolling resistance per unit load, interpolated in ln(load) (`load_table`: relative error
@@ -632,8 +536,6 @@ impl FrictionModel {
             if speed != 0.0 {
                 self.slice_consts(&g.cone, &self.cone_weights, speed.abs(), &mut cache.cone);
                 self.slice_consts(&g.cup, &self.cup_weights, speed.abs(), &mut cache.cup);
-                film_consts(&cache.cone, &g.cone.r_bar, &mut cache.cone_film);
-                film_consts(&cache.cup, &g.cup.r_bar, &mut cache.cup_film);
                 cache.raceways.reset(2 * ns);
                 cache.flange.reset(1);
             } else {
@@ -653,8 +555,8 @@ impl FrictionModel {
                     )
                 } else if self.halley {
                     (
-                        self.raceway_sliced_fast(&g.cone, &self.cone_weights, &cache.cone, &cache.cone_film, cone, speed),
-                        self.raceway_sliced_fast(&g.cup, &self.cup_weights, &cache.cup, &cache.cup_film, cup, speed),
+                        self.raceway_sliced::<true>(&g.cone, &self.cone_weights, &cache.cone, cone, speed),
+                        self.raceway_sliced::<true>(&g.cup, &self.cup_weights, &cache.cup, cup, speed),
                     )
                 } else {
                     (
