@@ -100,6 +100,8 @@ pub struct Parameters {
     pub start_from_rest: bool,
     /// Dynamic model: largest integrator step (s).
     pub max_step: f64,
+    /// Dynamic model: threads evaluating the rollers' contacts (1: the caller's only).
+    pub threads: u32,
 }
 
 impl Parameters {
@@ -199,6 +201,7 @@ impl Parameters {
             cone_mass: default_cone_mass(b),
             start_from_rest: false,
             max_step: 1e-4,
+            threads: 1,
         }
     }
 
@@ -334,6 +337,9 @@ impl Parameters {
         }
         if !(self.cone_mass.is_finite() && self.cone_mass >= 1e-3 && self.cone_mass <= 1e5) {
             return bad("cone.mass", format!("must be in [0.001, 1e5] kg, got {}", self.cone_mass));
+        }
+        if !(1..=64).contains(&self.threads) {
+            return bad("threads", format!("must be 1 to 64, got {}", self.threads));
         }
         if !(self.max_step.is_finite() && self.max_step >= 1e-9 && self.max_step <= 1.0) {
             return bad("maxStep", format!("must be in [1e-9, 1] s, got {}", self.max_step));

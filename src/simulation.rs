@@ -108,7 +108,7 @@ fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: 
 }
 
 /// Magic and version of the serialized state format.
-const STATE_MAGIC: &[u8; 8] = b"TRBSTAT2";
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT3";
 
 impl Simulation {
     /// A new element for `bearing`, parameters and inputs at the bearing's defaults.
@@ -556,6 +556,7 @@ impl Simulation {
             var::SLICES => p.slices as i32,
             var::OUTER_LOBES => p.outer_lobes as i32,
             var::INTEGRATOR => p.integrator as i32,
+            var::THREADS => p.threads as i32,
             var::TRACTION => p.traction as i32,
             var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
@@ -598,6 +599,7 @@ impl Simulation {
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
+            var::THREADS => p.threads = value.max(0) as u32,
             var::TRACTION => {
                 p.traction = if value == 0 {
                     TractionLaw::ThermalEyring

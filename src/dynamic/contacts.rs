@@ -126,6 +126,9 @@ pub(crate) struct Constants {
     /// x86-64). Tests switch it off (with `paired_traction`) for the scalar reference.
     #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) lane_slices: bool,
+    /// The rollers' thread pool (`threads` > 1; `None`: the caller's thread alone). Each
+    /// instance has its own, so parallel instances in a co-simulation master do not share it.
+    pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -276,6 +279,10 @@ impl Constants {
             ],
             displacement_causality: p.causality == LoadCausality::Displacement,
             lane_slices: cfg!(target_arch = "x86_64"),
+            pool: (p.threads > 1)
+                .then(|| rayon::ThreadPoolBuilder::new().num_threads(p.threads as usize).build().ok())
+                .flatten()
+                .map(std::sync::Arc::new),
             paired_traction: cfg!(target_arch = "x86_64")
                 && p.lubrication != Lubrication::Dry
                 && p.traction == tr::TractionLaw::ThermalEyring,
@@ -979,6 +986,370 @@ fn slice_traction_lanes(
     (coef, couple, ok)
 }
 
+/// The cone's and cage's pose and motion, the same for every roller of one evaluation.
+struct Frame {
+    /// Cone rotation (columns: the cone's axes), its transpose and the cone's axis.
+    rot: nalgebra::Matrix3<f64>,
+    rot_t: nalgebra::Matrix3<f64>,
+    axis_c: V3,
+    origin: V3,
+    cone_vel: V3,
+    /// In the cone's frame: its own velocity, the bearing axis, the axis term of the orbit.
+    cone_vel_l: V3,
+    x_l: V3,
+    x_cross_o_l: V3,
+    cage_psi: f64,
+    cage_rate: f64,
+    cage_pos: V3,
+    cage_vel: V3,
+}
+
+/// Roller `j`'s contacts (cup, cone, flange, cage pocket) at state `y`: its record (loads,
+/// moments, its shares of the cone's, cage's and cup's equations and of the dissipated
+/// power) and, when given, its 11 derivatives in `dy` and its slice loads (cone, then cup) in
+/// `slice_loads`. It reads only `y`, so rollers may be evaluated in any order or at once.
+#[allow(clippy::too_many_arguments)]
+fn evaluate_roller(
+    g: &Geometry,
+    c: &Constants,
+    inputs: &Inputs,
+    f: &Frame,
+    y: &[f64],
+    j: usize,
+    dy: Option<&mut [f64]>,
+    slice_loads: Option<&mut [f64]>,
+) -> RollerRecord {
+    let ns = c.s_cm.len();
+    let o = ROLLERS + PER_ROLLER * j;
+    let RollerPose {
+        e_r,
+        e_t,
+        r,
+        pos,
+        vel,
+        u,
+        m_in,
+        a,
+        w,
+        sf,
+        cf,
+    } = roller_pose(g, c, y, j);
+    let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
+    let da_dtilt = m_in * cf;
+    let da_dskew = -u * sf - e_t * cf;
+    let dd = c.dd_half[j];
+
+    // cup: the global frame; it does not translate and turns at `cupSpeed` about the axis
+    let cup = Race {
+        line: &c.cup,
+        pos,
+        vel,
+        w,
+        a,
+        ring_v0: V3::zeros(),
+        ring_omega: V3::x() * inputs.cup_speed,
+        pt_v0: V3::zeros(),
+        pt_omega: V3::x() * psid,
+        gap_max: -c.half_clearance * c.cos_o,
+    };
+    let (cone_loads, cup_loads) = match slice_loads {
+        Some(roller) => {
+            let (cone, cup) = roller.split_at_mut(ns);
+            (Some(cone), Some(cup))
+        }
+        None => (None, None),
+    };
+    let cup_sum = if c.lobes > 0 {
+        race_slices(c, &cup, dd, cup_loads, |q: &V3| {
+            let nl = c.lobes as f64;
+            let (sl, cl) = libm::sincos(nl * libm::atan2(q[2], q[1]));
+            let lobe = 0.5 * c.waveform * (1.0 - cl);
+            let lobe_psi = 0.5 * c.waveform * nl * sl;
+            (-(c.half_clearance + lobe) * c.cos_o, -lobe_psi * c.cos_o)
+        })
+    } else {
+        let gap = -c.half_clearance * c.cos_o;
+        #[cfg(target_arch = "x86_64")]
+        if c.lane_slices {
+            race_slices_lanes(c, &cup, dd, cup_loads, gap)
+        } else {
+            race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
+    };
+    // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
+    let cone = Race {
+        line: &c.cone,
+        pos: f.rot_t * (pos - f.origin),
+        vel: f.rot_t * vel,
+        w: f.rot_t * w,
+        a: f.rot_t * a,
+        ring_v0: f.cone_vel_l,
+        ring_omega: V3::x() * inputs.speed,
+        pt_v0: f.x_cross_o_l * psid,
+        pt_omega: f.x_l * psid,
+        gap_max: 0.0,
+    };
+    #[cfg(target_arch = "x86_64")]
+    let cone_sum = if c.lane_slices {
+        race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
+    } else {
+        race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
+    let (f_cone_r, m_cone_r) = (f.rot * cone_sum.f, f.rot * cone_sum.m);
+    let p_raceway = cup_sum.power + cone_sum.power;
+    let extrapolated = cup_sum.extrapolated | cone_sum.extrapolated;
+
+    // flange: roller-end sphere on the conical rib
+    let (mut f_fl, mut m_fl, mut q_fl, mut sliding_fl, mut p_flange) = (V3::zeros(), V3::zeros(), 0.0, 0.0, 0.0);
+    if let Some(fl) = &c.flange {
+        let s_centre = pos + a * fl.s_sphere;
+        let sl = f.rot_t * (s_centre - f.origin);
+        // The rib is a surface of revolution: the sphere centre's distance from its
+        // meridian in the centre's own half-plane, with rho its distance from the axis.
+        // That holds while the centre lies well off the axis on the roller's side. An end
+        // radius near (or above) the rib's circumferential radius rho_p = r_f / cos a_f
+        // puts the centre on or beyond the axis (32018X: R_s / rho_p = 1.0003, centre
+        // 18 um past it): rho = |r| would reflect it, adding 2 |r| cos a_f of spurious
+        // interference (9 um, 10 kN), and the term t^2 / (2 r) of a tangential offset t
+        // would be singular. There the radial coordinate is taken signed, in the roller's
+        // half-plane, and the centre's distance from the axis used for the circumferential
+        // curvature is floored at `axis_floor`, the geometry's floor on the relative
+        // curvature (the same rib as the quasi-static model's and the Hertz law's).
+        let pl = f.rot_t * (pos - f.origin);
+        let pr = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
+        let (cr, ct) = if pr > 0.0 { (pl[1] / pr, pl[2] / pr) } else { (1.0, 0.0) };
+        let r_signed = sl[1] * cr + sl[2] * ct;
+        let (rho, er) = if r_signed >= fl.axis_floor {
+            let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
+            (rho, V3::new(0.0, sl[1] / rho, sl[2] / rho))
+        } else {
+            let t = sl[2] * cr - sl[1] * ct;
+            let hyp = (fl.axis_floor * fl.axis_floor + t * t).sqrt();
+            let (ur, ut) = (fl.axis_floor / hyp, t / hyp);
+            (r_signed + hyp - fl.axis_floor, V3::new(0.0, ur * cr - ut * ct, ur * ct + ut * cr))
+        };
+        let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
+        // `reference` is the nominal contact point on the rib, the nominal sphere centre
+        // lies a sphere radius from it along the normal: interference = R_s - distance.
+        let delta = fl.sphere_radius - dist;
+        if delta > 0.0 {
+            let (q_el, dq) = fl.hertz.load(delta);
+            let n = f.rot * (V3::x() * fl.normal[0] + er * fl.normal[1]);
+            let pk = s_centre - n * fl.sphere_radius;
+            let lever = pk - pos;
+            let v_roller = vel + w.cross(&lever);
+            let v_ring = f.cone_vel + (f.axis_c * inputs.speed).cross(&(pk - f.origin));
+            let v_rel = v_roller - v_ring;
+            let vn = v_rel.dot(&n);
+            let c_damp = 2.0 * c.damping * (c.m_r * dq).sqrt();
+            let q = (q_el - c_damp * vn).max(0.0);
+            let damping_power = ((q - q_el) * (-vn)).max(0.0);
+            let v_t = v_rel - n * vn;
+            let vs = v_t.norm();
+            let (f_t, p_t) = if vs > 0.0 {
+                let coef = if c.dry {
+                    c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
+                } else {
+                    let v_point = V3::x().cross(&pk) * psid;
+                    let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
+                    let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
+                    rib_traction_coef(c, fl, q, vs, u_e)
+                };
+                (-v_t * coef, coef * vs * vs)
+            } else {
+                (V3::zeros(), 0.0)
+            };
+            let fk = n * q + f_t;
+            sliding_fl = f_t.norm();
+            f_fl = fk;
+            m_fl = lever.cross(&fk);
+            q_fl = q;
+            p_flange = p_t + damping_power;
+        }
+    }
+
+    // Cage pocket: walls at +-pocket_half from the pocket's axial plane, per slice and
+    // wall. The gap and the velocity relative to the cage are affine in the station s and
+    // the wall side, so the sums over slices reduce to eight scalar sums per roller and a
+    // few cross products (the same forces as slice by slice).
+    let psi_p = f.cage_psi + TAU * j as f64 / g.z as f64;
+    let (spp, cpp) = libm::sincos(psi_p);
+    let e_tp = V3::new(0.0, -spp, cpp);
+    let pocket_origin = f.cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
+    let w_cage_rel = w - V3::x() * f.cage_rate;
+    let spin_rel = w_cage_rel.dot(&a).abs();
+    let tau0 = (pos - pocket_origin).dot(&e_tp);
+    let tau1 = a.dot(&e_tp);
+    // velocity of the roller surface relative to the cage at station s, side sigma:
+    // v0 + s v1 + sigma rad rim; tangential part (normal e_tp removed) A + s B + sigma rad C
+    let v0 = vel - (f.cage_vel + V3::x().cross(&(pos - f.cage_pos)) * f.cage_rate);
+    let v1 = w_cage_rel.cross(&a);
+    let rim = w_cage_rel.cross(&e_tp);
+    let (v0e, v1e) = (v0.dot(&e_tp), v1.dot(&e_tp));
+    let va = v0 - e_tp * v0e;
+    let vb = v1 - e_tp * v1e;
+    let vc = rim - e_tp * rim.dot(&e_tp);
+    let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
+    let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
+    let l = c.slice_len;
+    let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
+    // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
+    let mut p_cage = 0.0;
+    let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for k in 0..ns {
+        let sk = c.s_cm[k];
+        let rad = c.radius[k];
+        let tau = tau0 + tau1 * sk;
+        let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
+        let beta = 2.0 * rad * (ac + sk * bc);
+        let closing0 = v0e + v1e * sk;
+        for side in [1.0_f64, -1.0] {
+            // gap to the wall on side `side` (front wall at +e_tp)
+            let gap = c.pocket_half - side * tau;
+            let (qn, drag) = if gap >= c.crit_gap {
+                let inv = 1.0 / gap;
+                (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
+            } else {
+                let closing = side * closing0;
+                let qh = k_hyd * rad * rad / c.crit_gap;
+                let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
+                let lk = libm::log(kappa);
+                let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
+                let q_el = qh + (c.crit_gap - gap) * c.k_pocket;
+                let q = (q_el + c_ph * closing).max(0.0);
+                // restitution damping dissipates (q - q_el) * closing
+                p_cage += ((q - q_el) * closing).max(0.0);
+                (q, c.mu_pocket * q)
+            };
+            let vs2 = (alpha + side * beta).max(0.0);
+            let ct = if vs2 > 0.0 { drag / (vs2 + V_EPS * V_EPS).sqrt() } else { 0.0 };
+            s_q += side * qn;
+            s_qs += side * qn * sk;
+            q_pocket += qn;
+            s_c += ct;
+            s_cs += ct * sk;
+            s_css += ct * sk * sk;
+            s_crad += side * rad * ct;
+            s_csrad += side * sk * rad * ct;
+            s_crr += ct * rad * rad;
+            p_cage += ct * vs2;
+        }
+    }
+    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
+    let m_pk = -(a.cross(&e_tp) * s_qs
+        + a.cross(&va) * s_cs
+        + a.cross(&vb) * s_css
+        + a.cross(&vc) * s_csrad
+        + e_tp.cross(&va) * s_crad
+        + e_tp.cross(&vb) * s_csrad
+        + e_tp.cross(&vc) * s_crr);
+
+    // totals of the roller
+    let force = cup_sum.f + f_cone_r + f_fl + f_pk;
+    let m = cup_sum.m + m_cone_r + m_fl + m_pk;
+    // moments about the geometric centre (the centre of mass is cm along a from it)
+    let to_centre = a * c.cm;
+    let rec = RollerRecord {
+        qi: cone_sum.q,
+        qo: cup_sum.q,
+        qf: q_fl,
+        qc: q_pocket,
+        m_cone: m_cone_r + to_centre.cross(&f_cone_r),
+        m_cup: cup_sum.m + to_centre.cross(&cup_sum.f),
+        m_flange: m_fl + to_centre.cross(&f_fl),
+        tilt_axis: e_t * cf + u * sf,
+        skew_axis: m_in,
+        f_cone: -(f_cone_r + f_fl),
+        f_cage: -f_pk,
+        m_cage: -((pos - f.cage_pos).cross(&f_pk) + m_pk)[0],
+        sliding: cone_sum.traction.norm() + cup_sum.traction.norm() + sliding_fl,
+        // on the cone: its moment about the f.origin (the rollers' moment about their centre
+        // of mass is -(m_cone_r + m_fl)) and about its own axis; on the cup (fixed): the
+        // opposite of the cup contact's moment on the roller about the bearing axis
+        m_cone_origin: -(m_cone_r + m_fl) + pos.cross(&(-(f_cone_r + f_fl))),
+        t_cone_raceway: (-m_cone_r - (pos - f.origin).cross(&f_cone_r)).dot(&f.axis_c),
+        t_cone_flange: (-m_fl - (pos - f.origin).cross(&f_fl)).dot(&f.axis_c),
+        t_cup: -(cup_sum.m + pos.cross(&cup_sum.f))[0],
+        p_raceway,
+        p_flange,
+        p_cage,
+        extrapolated,
+    };
+
+    if let Some(dy) = dy {
+        // translation in cylindrical coordinates
+        let (fx, fr, ft) = (force[0], force.dot(&e_r), force.dot(&e_t));
+        dy[0] = xd;
+        dy[1] = drd;
+        dy[2] = psid;
+        dy[3] = if c.axial { fx / c.m_r } else { 0.0 };
+        let centripetal = if c.centrifugal { r * psid * psid } else { 0.0 };
+        dy[4] = fr / c.m_r + centripetal;
+        dy[5] = (ft / c.m_r - 2.0 * drd * psid) / r;
+        // attitude rates from the angular velocity relative to the azimuth frame
+        let w_rel = w - V3::x() * psid;
+        let a_dot = w_rel.cross(&a);
+        dy[6] = a_dot.dot(&da_dtilt) / (cf * cf);
+        dy[7] = a_dot.dot(&da_dskew);
+        // Euler: w' = (M.a/I_a) a + [M - (M.a) a - (I_a - I_t)(w.a)(w x a)] / I_t
+        let ma = m.dot(&a);
+        let gyro = if c.gyroscopic {
+            w.cross(&a) * ((c.i_a - c.i_t) * w.dot(&a))
+        } else {
+            V3::zeros()
+        };
+        let wdot = a * (ma / c.i_a) + (m - a * ma - gyro) / c.i_t;
+        // in the rotating azimuth frame: d/dt(w_r) = w'.e_r + psi' w_t, d/dt(w_t) = w'.e_t - psi' w_r
+        dy[8] = wdot[0];
+        dy[9] = wdot.dot(&e_r) + psid * y[o + 10];
+        dy[10] = wdot.dot(&e_t) - psid * y[o + 9];
+    }
+    rec
+}
+
+/// Every roller's contacts into `records` (and `dy`, `slice_loads` when given): on the
+/// caller's thread, or spread over the element's thread pool (`threads` > 1) for a
+/// right-hand side. Each roller writes only its own record and derivatives.
+#[allow(clippy::too_many_arguments)]
+fn rollers(
+    g: &Geometry,
+    c: &Constants,
+    inputs: &Inputs,
+    frame: &Frame,
+    y: &[f64],
+    dy: Option<&mut [f64]>,
+    records: &mut [RollerRecord],
+    mut slice_loads: Option<&mut [f64]>,
+) {
+    let ns = c.s_cm.len();
+    match (&c.pool, dy, slice_loads.as_deref_mut()) {
+        (Some(pool), Some(dy), None) => {
+            use rayon::prelude::*;
+            let per_roller = &mut dy[ROLLERS..ROLLERS + PER_ROLLER * g.z];
+            pool.install(|| {
+                records
+                    .par_iter_mut()
+                    .zip(per_roller.par_chunks_mut(PER_ROLLER))
+                    .enumerate()
+                    .for_each(|(j, (rec, d))| *rec = evaluate_roller(g, c, inputs, frame, y, j, Some(d), None));
+            });
+        }
+        (_, mut dy, _) => {
+            for (j, rec) in records.iter_mut().enumerate().take(g.z) {
+                let o = ROLLERS + PER_ROLLER * j;
+                let d = dy.as_deref_mut().map(|d| &mut d[o..o + PER_ROLLER]);
+                let loads = slice_loads.as_deref_mut().map(|l| &mut l[2 * ns * j..2 * ns * (j + 1)]);
+                *rec = evaluate_roller(g, c, inputs, frame, y, j, d, loads);
+            }
+        }
+    }
+}
+
 /// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
 /// per-roller `records`; return the totals.
 #[allow(clippy::too_many_arguments)]
@@ -992,7 +1363,6 @@ pub(crate) fn evaluate(
     records: &mut [RollerRecord],
     mut slice_loads: Option<&mut [f64]>,
 ) -> Totals {
-    let z = g.z;
     let mut tot = Totals::default();
     // cone pose: rotation R (columns: the cone's axes), origin, velocity, spin about R x
     let rot = super::cone_rotation(inputs.xi, inputs.zeta);
@@ -1016,299 +1386,36 @@ pub(crate) fn evaluate(
     } else {
         (cage_angle(g, p, y), cage_speed(g, p, y), V3::zeros(), V3::zeros())
     };
-    let ns = c.s_cm.len();
-
-    for j in 0..z {
-        let o = ROLLERS + PER_ROLLER * j;
-        let RollerPose {
-            e_r,
-            e_t,
-            r,
-            pos,
-            vel,
-            u,
-            m_in,
-            a,
-            w,
-            sf,
-            cf,
-        } = roller_pose(g, c, y, j);
-        let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
-        let da_dtilt = m_in * cf;
-        let da_dskew = -u * sf - e_t * cf;
-        let dd = c.dd_half[j];
-
-        // cup: the global frame; it does not translate and turns at `cupSpeed` about the axis
-        let cup = Race {
-            line: &c.cup,
-            pos,
-            vel,
-            w,
-            a,
-            ring_v0: V3::zeros(),
-            ring_omega: V3::x() * inputs.cup_speed,
-            pt_v0: V3::zeros(),
-            pt_omega: V3::x() * psid,
-            gap_max: -c.half_clearance * c.cos_o,
-        };
-        let (cone_loads, cup_loads) = match slice_loads.as_deref_mut() {
-            Some(all) => {
-                let (cone, cup) = all[2 * ns * j..2 * ns * (j + 1)].split_at_mut(ns);
-                (Some(cone), Some(cup))
-            }
-            None => (None, None),
-        };
-        let cup_sum = if c.lobes > 0 {
-            race_slices(c, &cup, dd, cup_loads, |q: &V3| {
-                let nl = c.lobes as f64;
-                let (sl, cl) = libm::sincos(nl * libm::atan2(q[2], q[1]));
-                let lobe = 0.5 * c.waveform * (1.0 - cl);
-                let lobe_psi = 0.5 * c.waveform * nl * sl;
-                (-(c.half_clearance + lobe) * c.cos_o, -lobe_psi * c.cos_o)
-            })
-        } else {
-            let gap = -c.half_clearance * c.cos_o;
-            #[cfg(target_arch = "x86_64")]
-            if c.lane_slices {
-                race_slices_lanes(c, &cup, dd, cup_loads, gap)
-            } else {
-                race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
-            }
-            #[cfg(not(target_arch = "x86_64"))]
-            race_slices(c, &cup, dd, cup_loads, |_: &V3| (gap, 0.0))
-        };
-        // cone: in its own (displaced, misaligned, spinning) frame, rotated back once
-        let cone = Race {
-            line: &c.cone,
-            pos: rot_t * (pos - origin),
-            vel: rot_t * vel,
-            w: rot_t * w,
-            a: rot_t * a,
-            ring_v0: cone_vel_l,
-            ring_omega: V3::x() * inputs.speed,
-            pt_v0: x_cross_o_l * psid,
-            pt_omega: x_l * psid,
-            gap_max: 0.0,
-        };
-        #[cfg(target_arch = "x86_64")]
-        let cone_sum = if c.lane_slices {
-            race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
-        } else {
-            race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
-        };
-        #[cfg(not(target_arch = "x86_64"))]
-        let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
-        let (f_cone_r, m_cone_r) = (rot * cone_sum.f, rot * cone_sum.m);
-        tot.p_raceway += cup_sum.power + cone_sum.power;
-        tot.extrapolated |= cup_sum.extrapolated | cone_sum.extrapolated;
-
-        // flange: roller-end sphere on the conical rib
-        let (mut f_fl, mut m_fl, mut q_fl, mut sliding_fl) = (V3::zeros(), V3::zeros(), 0.0, 0.0);
-        if let Some(fl) = &c.flange {
-            let s_centre = pos + a * fl.s_sphere;
-            let sl = rot_t * (s_centre - origin);
-            // The rib is a surface of revolution: the sphere centre's distance from its
-            // meridian in the centre's own half-plane, with rho its distance from the axis.
-            // That holds while the centre lies well off the axis on the roller's side. An end
-            // radius near (or above) the rib's circumferential radius rho_p = r_f / cos a_f
-            // puts the centre on or beyond the axis (32018X: R_s / rho_p = 1.0003, centre
-            // 18 um past it): rho = |r| would reflect it, adding 2 |r| cos a_f of spurious
-            // interference (9 um, 10 kN), and the term t^2 / (2 r) of a tangential offset t
-            // would be singular. There the radial coordinate is taken signed, in the roller's
-            // half-plane, and the centre's distance from the axis used for the circumferential
-            // curvature is floored at `axis_floor`, the geometry's floor on the relative
-            // curvature (the same rib as the quasi-static model's and the Hertz law's).
-            let pl = rot_t * (pos - origin);
-            let pr = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
-            let (cr, ct) = if pr > 0.0 { (pl[1] / pr, pl[2] / pr) } else { (1.0, 0.0) };
-            let r_signed = sl[1] * cr + sl[2] * ct;
-            let (rho, er) = if r_signed >= fl.axis_floor {
-                let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
-                (rho, V3::new(0.0, sl[1] / rho, sl[2] / rho))
-            } else {
-                let t = sl[2] * cr - sl[1] * ct;
-                let hyp = (fl.axis_floor * fl.axis_floor + t * t).sqrt();
-                let (ur, ut) = (fl.axis_floor / hyp, t / hyp);
-                (r_signed + hyp - fl.axis_floor, V3::new(0.0, ur * cr - ut * ct, ur * ct + ut * cr))
-            };
-            let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
-            // `reference` is the nominal contact point on the rib, the nominal sphere centre
-            // lies a sphere radius from it along the normal: interference = R_s - distance.
-            let delta = fl.sphere_radius - dist;
-            if delta > 0.0 {
-                let (q_el, dq) = fl.hertz.load(delta);
-                let n = rot * (V3::x() * fl.normal[0] + er * fl.normal[1]);
-                let pk = s_centre - n * fl.sphere_radius;
-                let lever = pk - pos;
-                let v_roller = vel + w.cross(&lever);
-                let v_ring = cone_vel + (axis_c * inputs.speed).cross(&(pk - origin));
-                let v_rel = v_roller - v_ring;
-                let vn = v_rel.dot(&n);
-                let c_damp = 2.0 * c.damping * (c.m_r * dq).sqrt();
-                let q = (q_el - c_damp * vn).max(0.0);
-                let damping_power = ((q - q_el) * (-vn)).max(0.0);
-                let v_t = v_rel - n * vn;
-                let vs = v_t.norm();
-                let (f_t, p_t) = if vs > 0.0 {
-                    let coef = if c.dry {
-                        c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
-                    } else {
-                        let v_point = V3::x().cross(&pk) * psid;
-                        let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
-                        let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-                        rib_traction_coef(c, fl, q, vs, u_e)
-                    };
-                    (-v_t * coef, coef * vs * vs)
-                } else {
-                    (V3::zeros(), 0.0)
-                };
-                let fk = n * q + f_t;
-                sliding_fl = f_t.norm();
-                f_fl = fk;
-                m_fl = lever.cross(&fk);
-                q_fl = q;
-                tot.p_flange += p_t + damping_power;
-            }
-        }
-
-        // Cage pocket: walls at +-pocket_half from the pocket's axial plane, per slice and
-        // wall. The gap and the velocity relative to the cage are affine in the station s and
-        // the wall side, so the sums over slices reduce to eight scalar sums per roller and a
-        // few cross products (the same forces as slice by slice).
-        let psi_p = cage_psi + TAU * j as f64 / z as f64;
-        let (spp, cpp) = libm::sincos(psi_p);
-        let e_tp = V3::new(0.0, -spp, cpp);
-        let pocket_origin = cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
-        let w_cage_rel = w - V3::x() * cage_rate;
-        let spin_rel = w_cage_rel.dot(&a).abs();
-        let tau0 = (pos - pocket_origin).dot(&e_tp);
-        let tau1 = a.dot(&e_tp);
-        // velocity of the roller surface relative to the cage at station s, side sigma:
-        // v0 + s v1 + sigma rad rim; tangential part (normal e_tp removed) A + s B + sigma rad C
-        let v0 = vel - (cage_vel + V3::x().cross(&(pos - cage_pos)) * cage_rate);
-        let v1 = w_cage_rel.cross(&a);
-        let rim = w_cage_rel.cross(&e_tp);
-        let (v0e, v1e) = (v0.dot(&e_tp), v1.dot(&e_tp));
-        let va = v0 - e_tp * v0e;
-        let vb = v1 - e_tp * v1e;
-        let vc = rim - e_tp * rim.dot(&e_tp);
-        let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
-        let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
-        let l = c.slice_len;
-        let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
-        // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
-        let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
-            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        for k in 0..ns {
-            let sk = c.s_cm[k];
-            let rad = c.radius[k];
-            let tau = tau0 + tau1 * sk;
-            let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
-            let beta = 2.0 * rad * (ac + sk * bc);
-            let closing0 = v0e + v1e * sk;
-            for side in [1.0_f64, -1.0] {
-                // gap to the wall on side `side` (front wall at +e_tp)
-                let gap = c.pocket_half - side * tau;
-                let (qn, drag) = if gap >= c.crit_gap {
-                    let inv = 1.0 / gap;
-                    (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
-                } else {
-                    let closing = side * closing0;
-                    let qh = k_hyd * rad * rad / c.crit_gap;
-                    let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
-                    let lk = libm::log(kappa);
-                    let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
-                    let q_el = qh + (c.crit_gap - gap) * c.k_pocket;
-                    let q = (q_el + c_ph * closing).max(0.0);
-                    // restitution damping dissipates (q - q_el) * closing
-                    tot.p_cage += ((q - q_el) * closing).max(0.0);
-                    (q, c.mu_pocket * q)
-                };
-                let vs2 = (alpha + side * beta).max(0.0);
-                let ct = if vs2 > 0.0 { drag / (vs2 + V_EPS * V_EPS).sqrt() } else { 0.0 };
-                s_q += side * qn;
-                s_qs += side * qn * sk;
-                q_pocket += qn;
-                s_c += ct;
-                s_cs += ct * sk;
-                s_css += ct * sk * sk;
-                s_crad += side * rad * ct;
-                s_csrad += side * sk * rad * ct;
-                s_crr += ct * rad * rad;
-                tot.p_cage += ct * vs2;
-            }
-        }
-        let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
-        let m_pk = -(a.cross(&e_tp) * s_qs
-            + a.cross(&va) * s_cs
-            + a.cross(&vb) * s_css
-            + a.cross(&vc) * s_csrad
-            + e_tp.cross(&va) * s_crad
-            + e_tp.cross(&vb) * s_csrad
-            + e_tp.cross(&vc) * s_crr);
-
-        // totals of the roller
-        let f = cup_sum.f + f_cone_r + f_fl + f_pk;
-        let m = cup_sum.m + m_cone_r + m_fl + m_pk;
-        // moments about the geometric centre (the centre of mass is cm along a from it)
-        let to_centre = a * c.cm;
-        let rec = RollerRecord {
-            qi: cone_sum.q,
-            qo: cup_sum.q,
-            qf: q_fl,
-            qc: q_pocket,
-            m_cone: m_cone_r + to_centre.cross(&f_cone_r),
-            m_cup: cup_sum.m + to_centre.cross(&cup_sum.f),
-            m_flange: m_fl + to_centre.cross(&f_fl),
-            tilt_axis: e_t * cf + u * sf,
-            skew_axis: m_in,
-            f_cone: -(f_cone_r + f_fl),
-            f_cage: -f_pk,
-            m_cage: -((pos - cage_pos).cross(&f_pk) + m_pk)[0],
-            sliding: cone_sum.traction.norm() + cup_sum.traction.norm() + sliding_fl,
-        };
-        // on the cone: force, moment about the origin and about its own axis
-        let f_on_cone = rec.f_cone;
-        let m_on_cone_pos = -(m_cone_r + m_fl); // about the roller's centre of mass
-        tot.f_cone += f_on_cone;
-        tot.m_cone += m_on_cone_pos + pos.cross(&f_on_cone);
-        tot.t_cone_raceway += (-m_cone_r - (pos - origin).cross(&f_cone_r)).dot(&axis_c);
-        tot.t_cone_flange += (-m_fl - (pos - origin).cross(&f_fl)).dot(&axis_c);
-        // on the cup (fixed): the opposite of the cup contact's force and moment on the roller
-        tot.t_cup -= (cup_sum.m + pos.cross(&cup_sum.f))[0];
+    let frame = Frame {
+        rot,
+        rot_t,
+        axis_c,
+        origin,
+        cone_vel,
+        cone_vel_l,
+        x_l,
+        x_cross_o_l,
+        cage_psi,
+        cage_rate,
+        cage_pos,
+        cage_vel,
+    };
+    rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
+    // the rollers' shares, added in roller order (the same bits for any thread count)
+    for rec in records.iter() {
+        tot.f_cone += rec.f_cone;
+        tot.m_cone += rec.m_cone_origin;
+        tot.t_cone_raceway += rec.t_cone_raceway;
+        tot.t_cone_flange += rec.t_cone_flange;
+        tot.t_cup += rec.t_cup;
         tot.f_cage += rec.f_cage;
         tot.m_cage += rec.m_cage;
-        records[j] = rec;
-
-        if let Some(dy) = dy.as_deref_mut() {
-            // translation in cylindrical coordinates
-            let (fx, fr, ft) = (f[0], f.dot(&e_r), f.dot(&e_t));
-            dy[o] = xd;
-            dy[o + 1] = drd;
-            dy[o + 2] = psid;
-            dy[o + 3] = if c.axial { fx / c.m_r } else { 0.0 };
-            let centripetal = if c.centrifugal { r * psid * psid } else { 0.0 };
-            dy[o + 4] = fr / c.m_r + centripetal;
-            dy[o + 5] = (ft / c.m_r - 2.0 * drd * psid) / r;
-            // attitude rates from the angular velocity relative to the azimuth frame
-            let w_rel = w - V3::x() * psid;
-            let a_dot = w_rel.cross(&a);
-            dy[o + 6] = a_dot.dot(&da_dtilt) / (cf * cf);
-            dy[o + 7] = a_dot.dot(&da_dskew);
-            // Euler: w' = (M.a/I_a) a + [M - (M.a) a - (I_a - I_t)(w.a)(w x a)] / I_t
-            let ma = m.dot(&a);
-            let gyro = if c.gyroscopic {
-                w.cross(&a) * ((c.i_a - c.i_t) * w.dot(&a))
-            } else {
-                V3::zeros()
-            };
-            let wdot = a * (ma / c.i_a) + (m - a * ma - gyro) / c.i_t;
-            // in the rotating azimuth frame: d/dt(w_r) = w'.e_r + psi' w_t, d/dt(w_t) = w'.e_t - psi' w_r
-            dy[o + 8] = wdot[0];
-            dy[o + 9] = wdot.dot(&e_r) + psid * y[o + 10];
-            dy[o + 10] = wdot.dot(&e_t) - psid * y[o + 9];
-        }
+        tot.p_raceway += rec.p_raceway;
+        tot.p_flange += rec.p_flange;
+        tot.p_cage += rec.p_cage;
+        tot.extrapolated |= rec.extrapolated;
     }
+
     // cage land (dynamic cage on the cup land): short-bearing film with spin, whirl and
     // squeeze, evaluated at the critical gap at most; Hertz, damping and boundary friction
     // below it

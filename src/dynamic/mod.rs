@@ -95,6 +95,18 @@ pub(crate) struct RollerRecord {
     /// Net sliding traction force on the roller: the magnitudes of the cone's and the cup's
     /// net tangential slice forces and of the rib's friction force, added.
     pub sliding: f64,
+    /// The roller's shares of the totals: its moment on the cone about the origin, on the
+    /// cone about the cone's axis from raceway and flange, on the cup about the bearing axis.
+    pub m_cone_origin: V3,
+    pub t_cone_raceway: f64,
+    pub t_cone_flange: f64,
+    pub t_cup: f64,
+    /// Power dissipated at its raceways, flange and pocket (W).
+    pub p_raceway: f64,
+    pub p_flange: f64,
+    pub p_cage: f64,
+    /// A slice law was extrapolated beyond its table.
+    pub extrapolated: bool,
 }
 
 /// Totals of one evaluation.
