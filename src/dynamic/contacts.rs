@@ -1004,6 +1004,166 @@ struct Frame {
     cage_vel: V3,
 }
 
+/// The roller-end sphere on the conical rib (Hertz point contact, damping, rib traction) of a
+/// roller at `pos` with velocity `vel`, angular velocity `w`, axis `a`, orbit rate `psid`:
+/// force and moment about the roller's centre of mass on the roller, normal load, friction
+/// force and dissipated power (all zero without a flange or contact).
+#[allow(clippy::too_many_arguments)]
+fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w: V3, a: V3, psid: f64) -> (V3, V3, f64, f64, f64) {
+    let (mut f_fl, mut m_fl, mut q_fl, mut sliding_fl, mut p_flange) = (V3::zeros(), V3::zeros(), 0.0, 0.0, 0.0);
+    if let Some(fl) = &c.flange {
+        let s_centre = pos + a * fl.s_sphere;
+        let sl = f.rot_t * (s_centre - f.origin);
+        // The rib is a surface of revolution: the sphere centre's distance from its
+        // meridian in the centre's own half-plane, with rho its distance from the axis.
+        // That holds while the centre lies well off the axis on the roller's side. An end
+        // radius near (or above) the rib's circumferential radius rho_p = r_f / cos a_f
+        // puts the centre on or beyond the axis (32018X: R_s / rho_p = 1.0003, centre
+        // 18 um past it): rho = |r| would reflect it, adding 2 |r| cos a_f of spurious
+        // interference (9 um, 10 kN), and the term t^2 / (2 r) of a tangential offset t
+        // would be singular. There the radial coordinate is taken signed, in the roller's
+        // half-plane, and the centre's distance from the axis used for the circumferential
+        // curvature is floored at `axis_floor`, the geometry's floor on the relative
+        // curvature (the same rib as the quasi-static model's and the Hertz law's).
+        let pl = f.rot_t * (pos - f.origin);
+        let pr = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
+        let (cr, ct) = if pr > 0.0 { (pl[1] / pr, pl[2] / pr) } else { (1.0, 0.0) };
+        let r_signed = sl[1] * cr + sl[2] * ct;
+        let (rho, er) = if r_signed >= fl.axis_floor {
+            let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
+            (rho, V3::new(0.0, sl[1] / rho, sl[2] / rho))
+        } else {
+            let t = sl[2] * cr - sl[1] * ct;
+            let hyp = (fl.axis_floor * fl.axis_floor + t * t).sqrt();
+            let (ur, ut) = (fl.axis_floor / hyp, t / hyp);
+            (r_signed + hyp - fl.axis_floor, V3::new(0.0, ur * cr - ut * ct, ur * ct + ut * cr))
+        };
+        let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
+        // `reference` is the nominal contact point on the rib, the nominal sphere centre
+        // lies a sphere radius from it along the normal: interference = R_s - distance.
+        let delta = fl.sphere_radius - dist;
+        if delta > 0.0 {
+            let (q_el, dq) = fl.hertz.load(delta);
+            let n = f.rot * (V3::x() * fl.normal[0] + er * fl.normal[1]);
+            let pk = s_centre - n * fl.sphere_radius;
+            let lever = pk - pos;
+            let v_roller = vel + w.cross(&lever);
+            let v_ring = f.cone_vel + (f.axis_c * inputs.speed).cross(&(pk - f.origin));
+            let v_rel = v_roller - v_ring;
+            let vn = v_rel.dot(&n);
+            let c_damp = 2.0 * c.damping * (c.m_r * dq).sqrt();
+            let q = (q_el - c_damp * vn).max(0.0);
+            let damping_power = ((q - q_el) * (-vn)).max(0.0);
+            let v_t = v_rel - n * vn;
+            let vs = v_t.norm();
+            let (f_t, p_t) = if vs > 0.0 {
+                let coef = if c.dry {
+                    c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
+                } else {
+                    let v_point = V3::x().cross(&pk) * psid;
+                    let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
+                    let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
+                    rib_traction_coef(c, fl, q, vs, u_e)
+                };
+                (-v_t * coef, coef * vs * vs)
+            } else {
+                (V3::zeros(), 0.0)
+            };
+            let fk = n * q + f_t;
+            sliding_fl = f_t.norm();
+            f_fl = fk;
+            m_fl = lever.cross(&fk);
+            q_fl = q;
+            p_flange = p_t + damping_power;
+        }
+    }
+    (f_fl, m_fl, q_fl, sliding_fl, p_flange)
+}
+
+/// Cage pocket of roller `j` (at `pos`, velocity `vel`, angular velocity `w`, axis `a`):
+/// walls at ±pocket_half from the pocket's axial plane, per slice and wall. The gap and the
+/// velocity relative to the cage are affine in the station s and the wall side, so the sums
+/// over slices reduce to eight scalar sums per roller and a few cross products (the same
+/// forces as slice by slice). Returns the force and moment (about the centre of mass) on the
+/// roller, the summed normal load and the dissipated power.
+#[allow(clippy::too_many_arguments)]
+fn cage_pocket(g: &Geometry, c: &Constants, f: &Frame, j: usize, pos: V3, vel: V3, w: V3, a: V3) -> (V3, V3, f64, f64) {
+    let ns = c.s_cm.len();
+    let psi_p = f.cage_psi + TAU * j as f64 / g.z as f64;
+    let (spp, cpp) = libm::sincos(psi_p);
+    let e_tp = V3::new(0.0, -spp, cpp);
+    let pocket_origin = f.cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
+    let w_cage_rel = w - V3::x() * f.cage_rate;
+    let spin_rel = w_cage_rel.dot(&a).abs();
+    let tau0 = (pos - pocket_origin).dot(&e_tp);
+    let tau1 = a.dot(&e_tp);
+    // velocity of the roller surface relative to the cage at station s, side sigma:
+    // v0 + s v1 + sigma rad rim; tangential part (normal e_tp removed) A + s B + sigma rad C
+    let v0 = vel - (f.cage_vel + V3::x().cross(&(pos - f.cage_pos)) * f.cage_rate);
+    let v1 = w_cage_rel.cross(&a);
+    let rim = w_cage_rel.cross(&e_tp);
+    let (v0e, v1e) = (v0.dot(&e_tp), v1.dot(&e_tp));
+    let va = v0 - e_tp * v0e;
+    let vb = v1 - e_tp * v1e;
+    let vc = rim - e_tp * rim.dot(&e_tp);
+    let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
+    let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
+    let l = c.slice_len;
+    let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
+    // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
+    let mut p_cage = 0.0;
+    let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for k in 0..ns {
+        let sk = c.s_cm[k];
+        let rad = c.radius[k];
+        let tau = tau0 + tau1 * sk;
+        let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
+        let beta = 2.0 * rad * (ac + sk * bc);
+        let closing0 = v0e + v1e * sk;
+        for side in [1.0_f64, -1.0] {
+            // gap to the wall on side `side` (front wall at +e_tp)
+            let gap = c.pocket_half - side * tau;
+            let (qn, drag) = if gap >= c.crit_gap {
+                let inv = 1.0 / gap;
+                (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
+            } else {
+                let closing = side * closing0;
+                let qh = k_hyd * rad * rad / c.crit_gap;
+                let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
+                let lk = libm::log(kappa);
+                let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
+                let q_el = qh + (c.crit_gap - gap) * c.k_pocket;
+                let q = (q_el + c_ph * closing).max(0.0);
+                // restitution damping dissipates (q - q_el) * closing
+                p_cage += ((q - q_el) * closing).max(0.0);
+                (q, c.mu_pocket * q)
+            };
+            let vs2 = (alpha + side * beta).max(0.0);
+            let ct = if vs2 > 0.0 { drag / (vs2 + V_EPS * V_EPS).sqrt() } else { 0.0 };
+            s_q += side * qn;
+            s_qs += side * qn * sk;
+            q_pocket += qn;
+            s_c += ct;
+            s_cs += ct * sk;
+            s_css += ct * sk * sk;
+            s_crad += side * rad * ct;
+            s_csrad += side * sk * rad * ct;
+            s_crr += ct * rad * rad;
+            p_cage += ct * vs2;
+        }
+    }
+    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
+    let m_pk = -(a.cross(&e_tp) * s_qs
+        + a.cross(&va) * s_cs
+        + a.cross(&vb) * s_css
+        + a.cross(&vc) * s_csrad
+        + e_tp.cross(&va) * s_crad
+        + e_tp.cross(&vb) * s_csrad
+        + e_tp.cross(&vc) * s_crr);
+    (f_pk, m_pk, q_pocket, p_cage)
+}
+
 /// Roller `j`'s contacts (cup, cone, flange, cage pocket) at state `y`: its record (loads,
 /// moments, its shares of the cone's, cage's and cup's equations and of the dissipated
 /// power) and, when given, its 11 derivatives in `dy` and its slice loads (cone, then cup) in
@@ -1103,151 +1263,8 @@ fn evaluate_roller(
     let p_raceway = cup_sum.power + cone_sum.power;
     let extrapolated = cup_sum.extrapolated | cone_sum.extrapolated;
 
-    // flange: roller-end sphere on the conical rib
-    let (mut f_fl, mut m_fl, mut q_fl, mut sliding_fl, mut p_flange) = (V3::zeros(), V3::zeros(), 0.0, 0.0, 0.0);
-    if let Some(fl) = &c.flange {
-        let s_centre = pos + a * fl.s_sphere;
-        let sl = f.rot_t * (s_centre - f.origin);
-        // The rib is a surface of revolution: the sphere centre's distance from its
-        // meridian in the centre's own half-plane, with rho its distance from the axis.
-        // That holds while the centre lies well off the axis on the roller's side. An end
-        // radius near (or above) the rib's circumferential radius rho_p = r_f / cos a_f
-        // puts the centre on or beyond the axis (32018X: R_s / rho_p = 1.0003, centre
-        // 18 um past it): rho = |r| would reflect it, adding 2 |r| cos a_f of spurious
-        // interference (9 um, 10 kN), and the term t^2 / (2 r) of a tangential offset t
-        // would be singular. There the radial coordinate is taken signed, in the roller's
-        // half-plane, and the centre's distance from the axis used for the circumferential
-        // curvature is floored at `axis_floor`, the geometry's floor on the relative
-        // curvature (the same rib as the quasi-static model's and the Hertz law's).
-        let pl = f.rot_t * (pos - f.origin);
-        let pr = (pl[1] * pl[1] + pl[2] * pl[2]).sqrt();
-        let (cr, ct) = if pr > 0.0 { (pl[1] / pr, pl[2] / pr) } else { (1.0, 0.0) };
-        let r_signed = sl[1] * cr + sl[2] * ct;
-        let (rho, er) = if r_signed >= fl.axis_floor {
-            let rho = (sl[1] * sl[1] + sl[2] * sl[2]).sqrt();
-            (rho, V3::new(0.0, sl[1] / rho, sl[2] / rho))
-        } else {
-            let t = sl[2] * cr - sl[1] * ct;
-            let hyp = (fl.axis_floor * fl.axis_floor + t * t).sqrt();
-            let (ur, ut) = (fl.axis_floor / hyp, t / hyp);
-            (r_signed + hyp - fl.axis_floor, V3::new(0.0, ur * cr - ut * ct, ur * ct + ut * cr))
-        };
-        let dist = (sl[0] - fl.reference[0]) * fl.normal[0] + (rho - fl.reference[1]) * fl.normal[1];
-        // `reference` is the nominal contact point on the rib, the nominal sphere centre
-        // lies a sphere radius from it along the normal: interference = R_s - distance.
-        let delta = fl.sphere_radius - dist;
-        if delta > 0.0 {
-            let (q_el, dq) = fl.hertz.load(delta);
-            let n = f.rot * (V3::x() * fl.normal[0] + er * fl.normal[1]);
-            let pk = s_centre - n * fl.sphere_radius;
-            let lever = pk - pos;
-            let v_roller = vel + w.cross(&lever);
-            let v_ring = f.cone_vel + (f.axis_c * inputs.speed).cross(&(pk - f.origin));
-            let v_rel = v_roller - v_ring;
-            let vn = v_rel.dot(&n);
-            let c_damp = 2.0 * c.damping * (c.m_r * dq).sqrt();
-            let q = (q_el - c_damp * vn).max(0.0);
-            let damping_power = ((q - q_el) * (-vn)).max(0.0);
-            let v_t = v_rel - n * vn;
-            let vs = v_t.norm();
-            let (f_t, p_t) = if vs > 0.0 {
-                let coef = if c.dry {
-                    c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
-                } else {
-                    let v_point = V3::x().cross(&pk) * psid;
-                    let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
-                    let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-                    rib_traction_coef(c, fl, q, vs, u_e)
-                };
-                (-v_t * coef, coef * vs * vs)
-            } else {
-                (V3::zeros(), 0.0)
-            };
-            let fk = n * q + f_t;
-            sliding_fl = f_t.norm();
-            f_fl = fk;
-            m_fl = lever.cross(&fk);
-            q_fl = q;
-            p_flange = p_t + damping_power;
-        }
-    }
-
-    // Cage pocket: walls at +-pocket_half from the pocket's axial plane, per slice and
-    // wall. The gap and the velocity relative to the cage are affine in the station s and
-    // the wall side, so the sums over slices reduce to eight scalar sums per roller and a
-    // few cross products (the same forces as slice by slice).
-    let psi_p = f.cage_psi + TAU * j as f64 / g.z as f64;
-    let (spp, cpp) = libm::sincos(psi_p);
-    let e_tp = V3::new(0.0, -spp, cpp);
-    let pocket_origin = f.cage_pos + V3::new(0.0, cpp, spp) * c.pitch_radius;
-    let w_cage_rel = w - V3::x() * f.cage_rate;
-    let spin_rel = w_cage_rel.dot(&a).abs();
-    let tau0 = (pos - pocket_origin).dot(&e_tp);
-    let tau1 = a.dot(&e_tp);
-    // velocity of the roller surface relative to the cage at station s, side sigma:
-    // v0 + s v1 + sigma rad rim; tangential part (normal e_tp removed) A + s B + sigma rad C
-    let v0 = vel - (f.cage_vel + V3::x().cross(&(pos - f.cage_pos)) * f.cage_rate);
-    let v1 = w_cage_rel.cross(&a);
-    let rim = w_cage_rel.cross(&e_tp);
-    let (v0e, v1e) = (v0.dot(&e_tp), v1.dot(&e_tp));
-    let va = v0 - e_tp * v0e;
-    let vb = v1 - e_tp * v1e;
-    let vc = rim - e_tp * rim.dot(&e_tp);
-    let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
-    let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
-    let l = c.slice_len;
-    let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
-    // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
-    let mut p_cage = 0.0;
-    let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
-        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for k in 0..ns {
-        let sk = c.s_cm[k];
-        let rad = c.radius[k];
-        let tau = tau0 + tau1 * sk;
-        let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
-        let beta = 2.0 * rad * (ac + sk * bc);
-        let closing0 = v0e + v1e * sk;
-        for side in [1.0_f64, -1.0] {
-            // gap to the wall on side `side` (front wall at +e_tp)
-            let gap = c.pocket_half - side * tau;
-            let (qn, drag) = if gap >= c.crit_gap {
-                let inv = 1.0 / gap;
-                (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
-            } else {
-                let closing = side * closing0;
-                let qh = k_hyd * rad * rad / c.crit_gap;
-                let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
-                let lk = libm::log(kappa);
-                let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();
-                let q_el = qh + (c.crit_gap - gap) * c.k_pocket;
-                let q = (q_el + c_ph * closing).max(0.0);
-                // restitution damping dissipates (q - q_el) * closing
-                p_cage += ((q - q_el) * closing).max(0.0);
-                (q, c.mu_pocket * q)
-            };
-            let vs2 = (alpha + side * beta).max(0.0);
-            let ct = if vs2 > 0.0 { drag / (vs2 + V_EPS * V_EPS).sqrt() } else { 0.0 };
-            s_q += side * qn;
-            s_qs += side * qn * sk;
-            q_pocket += qn;
-            s_c += ct;
-            s_cs += ct * sk;
-            s_css += ct * sk * sk;
-            s_crad += side * rad * ct;
-            s_csrad += side * sk * rad * ct;
-            s_crr += ct * rad * rad;
-            p_cage += ct * vs2;
-        }
-    }
-    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
-    let m_pk = -(a.cross(&e_tp) * s_qs
-        + a.cross(&va) * s_cs
-        + a.cross(&vb) * s_css
-        + a.cross(&vc) * s_csrad
-        + e_tp.cross(&va) * s_crad
-        + e_tp.cross(&vb) * s_csrad
-        + e_tp.cross(&vc) * s_crr);
+    let (f_fl, m_fl, q_fl, sliding_fl, p_flange) = flange_contact(c, f, inputs, pos, vel, w, a, psid);
+    let (f_pk, m_pk, q_pocket, p_cage) = cage_pocket(g, c, f, j, pos, vel, w, a);
 
     // totals of the roller
     let force = cup_sum.f + f_cone_r + f_fl + f_pk;
@@ -1268,7 +1285,7 @@ fn evaluate_roller(
         f_cage: -f_pk,
         m_cage: -((pos - f.cage_pos).cross(&f_pk) + m_pk)[0],
         sliding: cone_sum.traction.norm() + cup_sum.traction.norm() + sliding_fl,
-        // on the cone: its moment about the f.origin (the rollers' moment about their centre
+        // on the cone: its moment about the origin (the rollers' moment about their centre
         // of mass is -(m_cone_r + m_fl)) and about its own axis; on the cup (fixed): the
         // opposite of the cup contact's moment on the roller about the bearing axis
         m_cone_origin: -(m_cone_r + m_fl) + pos.cross(&(-(f_cone_r + f_fl))),
