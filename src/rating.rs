@@ -423,7 +423,12 @@ mod tests {
             })
             .collect();
         let z = g.z as f64;
-        let j_r = roller.iter().enumerate().map(|(j, q)| q * (2.0 * PI * (j as f64 + 0.5) / z).cos()).sum::<f64>() / (z * q_max);
+        let j_r = roller
+            .iter()
+            .enumerate()
+            .map(|(j, q)| q * (2.0 * PI * (j as f64 + 0.5) / z).cos())
+            .sum::<f64>()
+            / (z * q_max);
         let j_1 = (roller.iter().map(|q| q.powi(4)).sum::<f64>() / z).powf(0.25) / q_max;
         let j_2 = (roller.iter().map(|q| q.powf(4.5)).sum::<f64>() / z).powf(1.0 / 4.5) / q_max;
         // the standard's 0.378 and 0.364 are these integrals' ratios (rotating and standing ring)
@@ -436,7 +441,11 @@ mod tests {
         let loads: Vec<f64> = roller.iter().flat_map(|q| std::iter::repeat_n(q / ns as f64, 2 * ns)).collect();
         let l = reference_rating_life(&r, &loads, RotatingRing::Cone);
         let lp = (c / (LAMBDA_NU * f_r)).powi(4);
-        assert!((l / lp - 1.0).abs() < 0.02, "L10r {l:.4e} vs Lundberg–Palmgren {lp:.4e}: {}", l / lp);
+        assert!(
+            (l / lp - 1.0).abs() < 0.02,
+            "L10r {l:.4e} vs Lundberg–Palmgren {lp:.4e}: {}",
+            l / lp
+        );
         // so at P = C_r the reference life is lambda nu^-4 = 2.11 million revolutions, not 1
         let at_c = l * (f_r / c).powi(4);
         assert!((at_c - LAMBDA_NU.powi(-4)).abs() < 0.02 * at_c, "{at_c}");

@@ -41,7 +41,10 @@ fn two_and_three_threads_give_the_bits_of_one() {
             let many = run(preset, integrator, threads, 6);
             assert_eq!(one.len(), many.len());
             let differing = one.iter().zip(&many).filter(|(a, b)| a != b).count();
-            assert_eq!(differing, 0, "{preset}, integrator {integrator}, {threads} threads: {differing} outputs differ");
+            assert_eq!(
+                differing, 0,
+                "{preset}, integrator {integrator}, {threads} threads: {differing} outputs differ"
+            );
         }
     }
 }

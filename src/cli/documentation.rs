@@ -530,10 +530,7 @@ fn write_tool_names(h: &mut String) {
          <code>zeta</code>, <code>reaction.My/Mz</code>); speeds stay (examples/drivetrain mirrors its \
          second bearing this way).</p>"
     );
-    let _ = writeln!(
-        h,
-        "<table><tr><th>MASTA (mastapy property)</th><th>this FMU</th><th>note</th></tr>"
-    );
+    let _ = writeln!(h, "<table><tr><th>MASTA (mastapy property)</th><th>this FMU</th><th>note</th></tr>");
     for (masta, ours, note) in [
         ("InnerRingAngularVelocity", "speed", "rad/s, about +x"),
         ("OuterRingAngularVelocity", "cupSpeed", "rad/s, about +x"),

@@ -555,6 +555,6 @@ pub(crate) fn cone_rotation(xi: f64, zeta: f64) -> Matrix3<f64> {
 }
 
 #[cfg(test)]
-mod tests;
-#[cfg(test)]
 mod spectrum;
+#[cfg(test)]
+mod tests;

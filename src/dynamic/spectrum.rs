@@ -149,7 +149,10 @@ fn eigenvalues_by_group() {
             share[group_of(i)] += vi.norm_sqr();
         }
         let total: f64 = share.iter().sum();
-        let (g, s) = share.iter().enumerate().fold((0, 0.0), |b, (g, s)| if *s > b.1 { (g, *s) } else { b });
+        let (g, s) = share
+            .iter()
+            .enumerate()
+            .fold((0, 0.0), |b, (g, s)| if *s > b.1 { (g, *s) } else { b });
         rows.push((*lambda, g, s / total, dopri_step_limit(*lambda)));
     }
     println!(
@@ -165,7 +168,9 @@ fn eigenvalues_by_group() {
             continue;
         }
         let big = sel.iter().map(|r| r.0.norm()).fold(0.0, f64::max);
-        let re = sel.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, r| (a.0.min(r.0.re), a.1.max(r.0.re)));
+        let re = sel
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, r| (a.0.min(r.0.re), a.1.max(r.0.re)));
         let im = sel.iter().map(|r| r.0.im.abs()).fold(0.0, f64::max);
         let h = sel.iter().map(|r| r.3).fold(f64::INFINITY, f64::min);
         let mean_share = sel.iter().map(|r| r.2).sum::<f64>() / sel.len() as f64;
@@ -197,5 +202,8 @@ fn eigenvalues_by_group() {
     // integrator cannot step beyond the smallest limit for long
     let h_min = by_limit[0].3;
     println!("mean step / smallest stability limit = {:.3}", mean_step / h_min);
-    assert!(mean_step <= 2.0 * h_min, "mean step {mean_step:.3e} s against the stability limit {h_min:.3e} s");
+    assert!(
+        mean_step <= 2.0 * h_min,
+        "mean step {mean_step:.3e} s against the stability limit {h_min:.3e} s"
+    );
 }

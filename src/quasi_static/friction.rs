@@ -27,6 +27,7 @@
 //! load plus the viscous film traction over the Hertz ellipse. Dry (`lubrication` = 1): one
 //! Coulomb coefficient, smoothly regularised, at raceways and flange [D19].
 
+use super::load_table::LoadTable;
 use super::{LineSums, RollerEval};
 use crate::bearing::Bearing;
 use crate::contact::line_contact_half_width;
@@ -34,7 +35,6 @@ use crate::fastmath as fm;
 use crate::geometry::{ContactLine, Geometry};
 use crate::model::{Inputs, Lubrication, Outputs, Parameters};
 use crate::tribology as tr;
-use super::load_table::LoadTable;
 
 /// Per-slice weights the solver multiplies with the slice loads.
 #[derive(Debug, Clone)]

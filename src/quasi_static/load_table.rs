@@ -58,7 +58,12 @@ impl LoadTable {
         }
         // Lagrange weights of the nodes at -1, 0, 1, 2
         let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-        let w = [-t * t1 * t2 * (1.0 / 6.0), tm * t1 * t2 * 0.5, -tm * t * t2 * 0.5, tm * t * t1 * (1.0 / 6.0)];
+        let w = [
+            -t * t1 * t2 * (1.0 / 6.0),
+            tm * t1 * t2 * 0.5,
+            -tm * t * t2 * 0.5,
+            tm * t * t1 * (1.0 / 6.0),
+        ];
         let v = &self.values[base..base + 4];
         let mut out = [0.0; 2];
         for c in 0..2 {

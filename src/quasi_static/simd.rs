@@ -165,4 +165,3 @@ unsafe fn kernel<F: Fn(usize, __m128d, __m128d) -> (__m128d, __m128d)>(
         extrapolated: false,
     })
 }
-

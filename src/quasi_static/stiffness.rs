@@ -161,11 +161,18 @@ impl Linearisation {
     }
 
     /// The skew model's stiffness by differences of its reactions.
-    pub fn of_skew_model(bearing: &crate::bearing::Bearing, params: &crate::model::Parameters) -> Result<Linearisation, crate::model::ModelError> {
+    pub fn of_skew_model(
+        bearing: &crate::bearing::Bearing,
+        params: &crate::model::Parameters,
+    ) -> Result<Linearisation, crate::model::ModelError> {
         Self::with_skew(bearing, params, true)
     }
 
-    fn with_skew(bearing: &crate::bearing::Bearing, params: &crate::model::Parameters, skew: bool) -> Result<Linearisation, crate::model::ModelError> {
+    fn with_skew(
+        bearing: &crate::bearing::Bearing,
+        params: &crate::model::Parameters,
+        skew: bool,
+    ) -> Result<Linearisation, crate::model::ModelError> {
         let mut p = params.clone();
         p.causality = crate::model::LoadCausality::Displacement;
         p.fidelity = crate::model::Fidelity::QuasiStatic;
