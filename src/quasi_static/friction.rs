@@ -598,13 +598,11 @@ impl FrictionModel {
                                         let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
                                         self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                     };
-                                    match sliced && speed != 0.0 {
-                                        true => match cache.flange.get(0, qf, |q| [fm::ln(law(q) / q), 0.0]) {
-                                            Some(v) => fm::exp(v[0]) * qf,
-                                            None => law(qf),
-                                        },
-                                        false => law(qf),
-                                    }
+                                    // the table exists at this speed when the raceways' does
+                                    let read = (sliced && speed != 0.0)
+                                        .then(|| cache.flange.get(0, qf, |q| [fm::ln(law(q) / q), 0.0]))
+                                        .flatten();
+                                    read.map_or_else(|| law(qf), |v| fm::exp(v[0]) * qf)
                                 } else {
                                     self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                 }
