@@ -289,9 +289,13 @@ impl Dynamic {
     pub fn advance(&mut self, state: &mut DynamicState, inputs: &Inputs, t_end: f64) -> Result<(), ModelError> {
         self.check_film_heating(inputs)?;
         if state.fsal_inputs.as_ref() != Some(inputs) {
-            // the right-hand side changed: the stored derivative no longer applies
+            // the right-hand side changed: the stored derivative no longer applies, nor does
+            // an implicit integrator's Jacobian
             state.fsal.clear();
             state.fsal_inputs = Some(*inputs);
+            if let Integrator::Rosenbrock(_) = self.ig {
+                rosenbrock::mark_jacobian_stale(&mut state.memory);
+            }
         }
         // prescribed cone translations jump to their inputs (held over the step)
         for (k, v) in contacts::prescribed_cone(&self.c, inputs).iter().enumerate() {

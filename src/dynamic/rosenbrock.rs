@@ -12,7 +12,8 @@
 //! y1 = y + sum m_i u_i; the right-hand side is autonomous (inputs held over the interval).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
-//! step, and after `max_age` accepted steps; the matrix is refactored whenever 1/(h gamma)
+//! step, after `max_age` accepted steps, and at the first step after the inputs changed
+//! ([`mark_jacobian_stale`]); the matrix is refactored whenever 1/(h gamma)
 //! changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but on the
 //! lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a test), so
 //! the step is kept unless it should grow by more than 20 %, and each communication interval
@@ -80,6 +81,18 @@ pub struct RosenbrockW {
     c: [[f64; S]; S],
     m: [f64; S],
     e: [f64; S],
+}
+
+/// Make the Jacobian in the integrator memory `memory` (empty: none yet) due at the next step:
+/// the caller's inputs changed. The error estimate is filtered through the stage matrix, and
+/// a Jacobian from other inputs filters the wrong modes: in a run-up from rest, one computed
+/// at low speed carries the stiff regularised friction of near-standstill and hid skew errors
+/// of 100 % and more at tolerances 1e-3 and 1e-4 (with the refresh: 0.9 % and 0.5 %, the
+/// [W25] run-up against Dormand-Prince at 1e-8, `docs/performance.md`).
+pub fn mark_jacobian_stale(memory: &mut [f64]) {
+    if let Some(age) = memory.first_mut() {
+        *age = f64::MAX;
+    }
 }
 
 /// Layout of the integrator memory: [age, Jacobian blocks].
