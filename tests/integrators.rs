@@ -96,7 +96,10 @@ fn rosenbrock_w_follows_a_run_up_from_rest_at_a_loose_tolerance() {
     let steps = 25;
     let reference = run_up(0, 1e-8, steps);
     let loose = run_up(2, 1e-3, steps);
-    for (k, (floor, name)) in [(1e-3, "frictionTorque"), (1e-7, "skew.mean"), (1e-7, "roller[1].skew")].iter().enumerate() {
+    for (k, (floor, name)) in [(1e-3, "frictionTorque"), (1e-7, "skew.mean"), (1e-7, "roller[1].skew")]
+        .iter()
+        .enumerate()
+    {
         let num: f64 = loose.iter().zip(&reference).map(|(a, r)| (a[k] - r[k]).powi(2)).sum::<f64>();
         let den: f64 = reference.iter().map(|r| r[k] * r[k]).sum::<f64>();
         let err = (num / den.max(floor * floor * steps as f64)).sqrt();

@@ -102,8 +102,8 @@ struct LineFriction {
 /// What a raceway slice's friction needs of the speed, the oil and the slice's position only:
 /// every roller has the same kinematics, so these are computed once per slice position and
 /// raceway (and kept while the speed does not change) instead of per roller and slice. Each
-/// value is the one the per-slice formula computes (same operations in the same order), so
-/// the friction is bitwise unchanged; only the load-dependent part remains per slice.
+/// value is the one the per-slice formula computes (same operations in the same order); only
+/// the load-dependent part remains per slice (read from the table at fidelity 0).
 #[derive(Debug, Clone, Copy, Default)]
 struct SliceConst {
     /// Entrainment and sliding speed (m/s), ln of the sliding speed (-inf at zero).
@@ -399,26 +399,31 @@ impl FrictionModel {
                 continue;
             }
             let (c, r_bar) = (&consts[k], line.r_bar[k]);
-            let law = |q: f64| self.slice_friction::<true>(c, r_bar, q);
-            // in logarithms: the film's viscosity grows as exp(alpha p) with p ~ sqrt(q), which
-            // ln(mu) follows smoothly and mu itself does not; rolling / q is a power law
-            let tabulated = match c.v_s > 0.0 && q <= c.table_max {
-                true => table.get(first + k, q, |q| {
-                    let (mu, rolling) = law(q);
-                    [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
-                }),
-                false => None,
-            };
-            let (mu, rolling) = match tabulated {
-                Some([ln_mu, ln_rolling]) => (fm::exp(ln_mu), if c.rolls { fm::exp(ln_rolling) * q } else { 0.0 }),
-                None => law(q),
-            };
+            let (mu, rolling) = self
+                .slice_friction_read(table, first + k, c, r_bar, q)
+                .unwrap_or_else(|| self.slice_friction::<true>(c, r_bar, q));
             f.torque += mu * q * weights.slide[k] + 2.0 * rolling * weights.entrain[k];
             f.skew += mu * q * sign * weights.skew[k];
             f.slide_force += mu * q * sign * weights.sign[k];
             f.rolling += rolling;
         }
         f
+    }
+
+    /// [`FrictionModel::slice_friction`] (traction coefficient, rolling resistance) of a slice
+    /// at load `q` read from line `line` of `table`; `None` where the table does not serve it
+    /// (no sliding, above `table_max`, off the grid). Tabulated in logarithms: the film's
+    /// viscosity grows as exp(alpha p) with p ~ sqrt(q), which ln(mu) follows smoothly and mu
+    /// itself does not; rolling / q is a power law.
+    fn slice_friction_read(&self, table: &mut LoadTable, line: usize, c: &SliceConst, r_bar: f64, q: f64) -> Option<(f64, f64)> {
+        if !(c.v_s > 0.0 && q <= c.table_max) {
+            return None;
+        }
+        let [ln_mu, ln_rolling] = table.get(line, q, |q| {
+            let (mu, rolling) = self.slice_friction::<true>(c, r_bar, q);
+            [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
+        })?;
+        Some((fm::exp(ln_mu), if c.rolls { fm::exp(ln_rolling) * q } else { 0.0 }))
     }
 
     /// [`FrictionModel::raceway_sliced`] straight from the laws (at standstill).
@@ -668,19 +673,16 @@ mod tests {
                     let law = |q: f64| fr.slice_friction::<true>(c, line.r_bar[k], q);
                     for q in (0..).map(|m| 1.0233_f64.powi(m)).take_while(|q| *q <= c.table_max) {
                         let (mu, rolling) = law(q);
-                        let [ln_mu, ln_rolling] = table
-                            .get(k, q, |q| {
-                                let (mu, rolling) = law(q);
-                                [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
-                            })
+                        let (mu_read, rolling_read) = fr
+                            .slice_friction_read(&mut table, k, c, line.r_bar[k], q)
                             .expect("every load up to the limit is tabulated");
                         n += 1;
-                        mu_abs = mu_abs.max((fm::exp(ln_mu) - mu).abs());
+                        mu_abs = mu_abs.max((mu_read - mu).abs());
                         if mu > 0.01 {
-                            mu_rel = mu_rel.max((fm::exp(ln_mu) / mu - 1.0).abs());
+                            mu_rel = mu_rel.max((mu_read / mu - 1.0).abs());
                         }
                         if c.rolls {
-                            roll_rel = roll_rel.max((fm::exp(ln_rolling) * q / rolling - 1.0).abs());
+                            roll_rel = roll_rel.max((rolling_read / rolling - 1.0).abs());
                         }
                     }
                 }
