@@ -12,8 +12,9 @@
 //! y1 = y + sum m_i u_i; the right-hand side is autonomous (inputs held over the interval).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
-//! step, after `max_age` accepted steps, and at the first step after the inputs changed
-//! ([`mark_jacobian_stale`]); the matrix is refactored whenever 1/(h gamma)
+//! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it
+//! was computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the
+//! first step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored whenever 1/(h gamma)
 //! changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but on the
 //! lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a test), so
 //! the step is kept unless it should grow by more than 20 %, and each communication interval
@@ -65,6 +66,9 @@ pub struct RosenbrockW {
     pub step_budget: u64,
     /// Accepted steps a Jacobian serves at most.
     pub max_age: u64,
+    /// The state holding the rollers' orbit angle (rad), and the turn after which a Jacobian
+    /// is recomputed (see [`RosenbrockW::turned_too_far`]); `None`: no such state.
+    pub orbit: Option<(usize, f64)>,
     /// Refactor when 1/(h gamma) differs from the factored value by more than this ratio.
     pub refactor_ratio: f64,
     jac: BlockJacobian,
@@ -95,10 +99,11 @@ pub fn mark_jacobian_stale(memory: &mut [f64]) {
     }
 }
 
-/// Layout of the integrator memory: [age, Jacobian blocks].
+/// Layout of the integrator memory: [age, orbit angle at the Jacobian, Jacobian blocks].
 fn memory_len(z: usize) -> usize {
-    1 + BlockJacobian::len(z)
+    HEADER + BlockJacobian::len(z)
 }
+const HEADER: usize = 2;
 
 impl RosenbrockW {
     pub fn new(z: usize, atol: Vec<f64>, rtol: Vec<f64>, scale: Vec<f64>, global_active: [bool; NG], max_step: f64) -> RosenbrockW {
@@ -137,6 +142,7 @@ impl RosenbrockW {
             max_step,
             step_budget: 50_000_000,
             max_age: 200,
+            orbit: None,
             refactor_ratio: 1e-12,
             jac: BlockJacobian::zeros(z),
             lu: BlockLu::new(z),
@@ -160,10 +166,22 @@ impl RosenbrockW {
             .compute(sys, y, &self.scale, &self.global_active, &mut self.work, &mut self.shares);
         counters.jacobians += 1;
         memory[0] = 0.0;
+        memory[1] = self.orbit.map_or(0.0, |(k, _)| y[k]);
         let mut v = Vec::new();
         self.jac.write(&mut v);
-        memory[1..].copy_from_slice(&v);
+        memory[HEADER..].copy_from_slice(&v);
         self.lu.alpha = f64::NAN;
+    }
+
+    /// Whether the rollers have orbited further than the set turn since the Jacobian in
+    /// `memory` was computed. The coupling of each roller's equations to the translations of
+    /// the rings and the cage goes with the cosine and sine of its azimuth, so a Jacobian from
+    /// an azimuth dpsi ago is wrong in those blocks by about dpsi. The W-method keeps its order
+    /// with it, but on the lightly damped contact modes the error estimate then sees their
+    /// undamped remainder and the step falls (the [W25] case in steady state at tolerance 1e-4:
+    /// 90 µs steps with a Jacobian 200 steps old, the 1 ms communication step with a fresh one).
+    fn turned_too_far(&self, y: &[f64], memory: &[f64]) -> bool {
+        self.orbit.is_some_and(|(k, turn)| (y[k] - memory[1]).abs() > turn)
     }
 
     /// Integrate `y` from `t` to `t_end`; `step` the controller state (its proposed step updated), `fsal` the
@@ -194,7 +212,7 @@ impl RosenbrockW {
             memory.resize(memory_len(z), 0.0);
             self.refresh_jacobian(sys, y, counters, memory);
         } else {
-            self.jac.read(&memory[1..]);
+            self.jac.read(&memory[HEADER..]);
         }
         // the factorisation is redone at every call (from the state alone)
         self.lu.alpha = f64::NAN;
@@ -228,7 +246,7 @@ impl RosenbrockW {
             if steps_here >= self.step_budget {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
             }
-            if memory[0] as u64 >= self.max_age {
+            if memory[0] as u64 >= self.max_age || self.turned_too_far(y, memory) {
                 self.refresh_jacobian(sys, y, counters, memory);
             }
             let alpha = 1.0 / (hs * GAMMA);
