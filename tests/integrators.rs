@@ -129,8 +129,15 @@ fn rosenbrock_w_takes_the_communication_step_on_a_settled_state() {
     }
     let steps = steps_at(&s) - before;
     let o = s.last_outputs();
-    eprintln!("settled [W25] case, Rosenbrock-W tol 1e-4: {steps} steps in 40 ms; torque {torque} -> {}", o.friction_torque);
+    eprintln!(
+        "settled [W25] case, Rosenbrock-W tol 1e-4: {steps} steps in 40 ms; torque {torque} -> {}",
+        o.friction_torque
+    );
     assert!(steps <= 80, "{steps} steps for 40 communication intervals");
     // and it is settled: the friction torque holds to 1e-5 over the 40 ms
-    assert!((o.friction_torque - torque).abs() <= 1e-5 * torque, "{torque} -> {}", o.friction_torque);
+    assert!(
+        (o.friction_torque - torque).abs() <= 1e-5 * torque,
+        "{torque} -> {}",
+        o.friction_torque
+    );
 }
