@@ -14,8 +14,8 @@
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it
 //! was computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the
-//! first step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored whenever 1/(h gamma)
-//! changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but on the
+//! first step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored
+//! whenever 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but on the
 //! lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a test), so
 //! the step is kept unless it should grow by more than 20 %, and each communication interval
 //! is cut into equal steps. The Jacobian and its age are part of the caller's state
@@ -67,7 +67,7 @@ pub struct RosenbrockW {
     /// Accepted steps a Jacobian serves at most.
     pub max_age: u64,
     /// The state holding the rollers' orbit angle (rad), and the turn after which a Jacobian
-    /// is recomputed (see [`RosenbrockW::turned_too_far`]); `None`: no such state.
+    /// is recomputed (see `turned_too_far`); `None`: no such state.
     pub orbit: Option<(usize, f64)>,
     /// Refactor when 1/(h gamma) differs from the factored value by more than this ratio.
     pub refactor_ratio: f64,
