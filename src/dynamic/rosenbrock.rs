@@ -15,9 +15,9 @@
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it
 //! was computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the
 //! first step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored
-//! whenever 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but on the
-//! lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a test), so
-//! the step is kept unless it should grow by more than 20 %, and each communication interval
+//! whenever 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I:
+//! legal, but on the lightly damped contact modes it cost 30 % rejected steps and 100x the
+//! steps in a test), so the step is kept unless it should grow by more than 20 %, and each communication interval
 //! is cut into equal steps. The Jacobian and its age are part of the caller's state
 //! (`memory`), and the factorisation is redone from them at every call, so a restored state
 //! continues bit for bit.
