@@ -12,13 +12,13 @@
 //! y1 = y + sum m_i u_i; the right-hand side is autonomous (inputs held over the interval).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
-//! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it
-//! was computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the
-//! first step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored
-//! whenever 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I:
-//! legal, but on the lightly damped contact modes it cost 30 % rejected steps and 100x the
-//! steps in a test), so the step is kept unless it should grow by more than 20 %, and each communication interval
-//! is cut into equal steps. The Jacobian and its age are part of the caller's state
+//! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
+//! computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the first
+//! step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored whenever
+//! 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but
+//! on the lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a
+//! test), so the step is kept unless it should grow by more than 20 %, and each communication
+//! interval is cut into equal steps. The Jacobian and its age are part of the caller's state
 //! (`memory`), and the factorisation is redone from them at every call, so a restored state
 //! continues bit for bit.
 
