@@ -63,6 +63,16 @@ impl BlockJacobian {
         z * (M * M + 2 * M * NG) + NG * NG
     }
 
+    /// Renumber the roller blocks as if every roller had moved on by `k` places: roller j takes
+    /// the blocks of roller j + k (mod z). In a state periodic in the roller pitch, roller j
+    /// stands after k pitches of orbit where roller j + k stood.
+    pub fn shift_rollers(&mut self, k: usize) {
+        let k = k % self.z;
+        self.d.rotate_left(k * M * M);
+        self.r.rotate_left(k * M * NG);
+        self.l.rotate_left(k * NG * M);
+    }
+
     /// Append the blocks to `out` (for the serialised integrator state).
     pub fn write(&self, out: &mut Vec<f64>) {
         out.extend_from_slice(&self.d);
@@ -365,6 +375,45 @@ fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Renumbering by k places gives roller j the blocks roller j + k had, leaves the global
+    /// block alone, and k places forward then z - k forward is the identity.
+    #[test]
+    fn shifting_the_rollers_renumbers_their_blocks() {
+        let z = 5;
+        let mut jac = BlockJacobian::zeros(z);
+        // every entry tells its roller and position: 1000 (roller + 1) + index in the block
+        for j in 0..z {
+            let tag = |i: usize| 1000.0 * (j + 1) as f64 + i as f64;
+            jac.d[j * M * M..(j + 1) * M * M]
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, v)| *v = tag(i));
+            jac.r[j * M * NG..(j + 1) * M * NG]
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, v)| *v = -tag(i));
+            jac.l[j * NG * M..(j + 1) * NG * M]
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, v)| *v = 0.5 * tag(i));
+        }
+        jac.g.iter_mut().enumerate().for_each(|(i, v)| *v = i as f64);
+        let before = jac.clone();
+        let k = 2;
+        jac.shift_rollers(k);
+        for j in 0..z {
+            let from = (j + k) % z;
+            assert_eq!(jac.d[j * M * M..(j + 1) * M * M], before.d[from * M * M..(from + 1) * M * M]);
+            assert_eq!(jac.r[j * M * NG..(j + 1) * M * NG], before.r[from * M * NG..(from + 1) * M * NG]);
+            assert_eq!(jac.l[j * NG * M..(j + 1) * NG * M], before.l[from * NG * M..(from + 1) * NG * M]);
+        }
+        assert_eq!(jac.g, before.g);
+        jac.shift_rollers(z - k);
+        assert_eq!(jac, before);
+        jac.shift_rollers(z);
+        assert_eq!(jac, before);
+    }
 
     /// A random block-arrowhead system: the block solve agrees with a dense solve.
     #[test]

@@ -13,7 +13,8 @@
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
-//! computed (`orbit`: the coupling blocks turn with the rollers' azimuths), and at the first
+//! computed (`orbit`: the coupling blocks turn with the rollers' azimuths; identical rollers'
+//! blocks are renumbered by whole pitches first), and at the first
 //! step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored whenever
 //! 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but
 //! on the lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a
@@ -66,9 +67,8 @@ pub struct RosenbrockW {
     pub step_budget: u64,
     /// Accepted steps a Jacobian serves at most.
     pub max_age: u64,
-    /// The state holding the rollers' orbit angle (rad), and the turn after which a Jacobian
-    /// is recomputed (see `turned_too_far`); `None`: no such state.
-    pub orbit: Option<(usize, f64)>,
+    /// How the Jacobian follows the rollers' orbit; `None`: it does not.
+    pub orbit: Option<Orbit>,
     /// Refactor when 1/(h gamma) differs from the factored value by more than this ratio.
     pub refactor_ratio: f64,
     jac: BlockJacobian,
@@ -97,6 +97,18 @@ pub fn mark_jacobian_stale(memory: &mut [f64]) {
     if let Some(age) = memory.first_mut() {
         *age = f64::MAX;
     }
+}
+
+/// The rollers' orbit, which the Jacobian follows.
+#[derive(Debug, Clone, Copy)]
+pub struct Orbit {
+    /// The state holding roller 1's orbit angle (rad).
+    pub state: usize,
+    /// The orbit after which the Jacobian no longer serves (rad).
+    pub turn: f64,
+    /// The roller pitch (rad) when the rollers are identical: the Jacobian of a state periodic
+    /// in the pitch is then renumbered by whole pitches instead of recomputed.
+    pub pitch: Option<f64>,
 }
 
 /// Layout of the integrator memory: [age, orbit angle at the Jacobian, Jacobian blocks].
@@ -166,7 +178,7 @@ impl RosenbrockW {
             .compute(sys, y, &self.scale, &self.global_active, &mut self.work, &mut self.shares);
         counters.jacobians += 1;
         memory[0] = 0.0;
-        memory[1] = self.orbit.map_or(0.0, |(k, _)| y[k]);
+        memory[1] = self.orbit.map_or(0.0, |o| y[o.state]);
         let mut v = Vec::new();
         self.jac.write(&mut v);
         memory[HEADER..].copy_from_slice(&v);
@@ -181,7 +193,34 @@ impl RosenbrockW {
     /// undamped remainder and the step falls (the [W25] case in steady state at tolerance 1e-4:
     /// 90 µs steps with a Jacobian 200 steps old, the 1 ms communication step with a fresh one).
     fn turned_too_far(&self, y: &[f64], memory: &[f64]) -> bool {
-        self.orbit.is_some_and(|(k, turn)| (y[k] - memory[1]).abs() > turn)
+        self.orbit.is_some_and(|o| (y[o.state] - memory[1]).abs() > o.turn)
+    }
+
+    /// With identical rollers: renumber the Jacobian in `memory` by the whole pitches the
+    /// rollers have orbited since it was computed, if that leaves it within the turn. Returns
+    /// whether it did.
+    fn follow_by_pitches(&mut self, y: &[f64], memory: &mut [f64]) -> bool {
+        let Some(Orbit {
+            state,
+            turn,
+            pitch: Some(pitch),
+        }) = self.orbit
+        else {
+            return false;
+        };
+        let moved = y[state] - memory[1];
+        let k = (moved / pitch).round();
+        if k == 0.0 || (moved - k * pitch).abs() > turn {
+            return false;
+        }
+        let z = self.jac.z as i64;
+        self.jac.shift_rollers((k as i64).rem_euclid(z) as usize);
+        memory[1] += k * pitch;
+        let mut v = Vec::new();
+        self.jac.write(&mut v);
+        memory[HEADER..].copy_from_slice(&v);
+        self.lu.alpha = f64::NAN;
+        true
     }
 
     /// Integrate `y` from `t` to `t_end`; `step` the controller state (its proposed step updated), `fsal` the
@@ -246,7 +285,7 @@ impl RosenbrockW {
             if steps_here >= self.step_budget {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
             }
-            if memory[0] as u64 >= self.max_age || self.turned_too_far(y, memory) {
+            if memory[0] as u64 >= self.max_age || (self.turned_too_far(y, memory) && !self.follow_by_pitches(y, memory)) {
                 self.refresh_jacobian(sys, y, counters, memory);
             }
             let alpha = 1.0 / (hs * GAMMA);
