@@ -73,12 +73,17 @@ impl BlockJacobian {
         self.l.rotate_left(k * NG * M);
     }
 
-    /// Append the blocks to `out` (for the serialised integrator state).
-    pub fn write(&self, out: &mut Vec<f64>) {
-        out.extend_from_slice(&self.d);
-        out.extend_from_slice(&self.r);
-        out.extend_from_slice(&self.l);
-        out.extend_from_slice(&self.g);
+    /// Write the blocks to `out`, [`BlockJacobian::len`] values (for the serialised
+    /// integrator state).
+    pub fn write(&self, out: &mut [f64]) {
+        let z = self.z;
+        let (a, rest) = out.split_at_mut(z * M * M);
+        let (b, rest) = rest.split_at_mut(z * M * NG);
+        let (c, d) = rest.split_at_mut(z * NG * M);
+        a.copy_from_slice(&self.d);
+        b.copy_from_slice(&self.r);
+        c.copy_from_slice(&self.l);
+        d[..NG * NG].copy_from_slice(&self.g);
     }
 
     /// Read the blocks written by [`BlockJacobian::write`].
@@ -456,9 +461,9 @@ mod tests {
             assert!((b[i] - x[i]).abs() < 1e-9, "{i}: {} vs {}", b[i], x[i]);
         }
         // serialisation round trip
-        let mut v = Vec::new();
+        let mut v = vec![f64::NAN; BlockJacobian::len(z)];
         jac.write(&mut v);
-        assert_eq!(v.len(), BlockJacobian::len(z));
+        assert!(v.iter().all(|x| x.is_finite()), "every value written");
         let mut back = BlockJacobian::zeros(z);
         back.read(&v);
         assert_eq!(back, jac);

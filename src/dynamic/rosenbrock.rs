@@ -14,8 +14,8 @@
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
 //! computed (`orbit`: the coupling blocks turn with the rollers' azimuths; identical rollers'
-//! blocks are renumbered by whole pitches first), and at the first
-//! step after the inputs changed ([`mark_jacobian_stale`]); the matrix is refactored whenever
+//! blocks are renumbered by whole pitches first), and at the first step after the inputs
+//! changed ([`mark_jacobian_stale`]); the matrix is refactored whenever
 //! 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but
 //! on the lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a
 //! test), so the step is kept unless it should grow by more than 20 %, and each communication
@@ -179,9 +179,12 @@ impl RosenbrockW {
         counters.jacobians += 1;
         memory[0] = 0.0;
         memory[1] = self.orbit.map_or(0.0, |o| y[o.state]);
-        let mut v = Vec::new();
-        self.jac.write(&mut v);
-        memory[HEADER..].copy_from_slice(&v);
+        self.store_jacobian(memory);
+    }
+
+    /// Keep the Jacobian in `memory` (the caller's state) and have it factored anew.
+    fn store_jacobian(&mut self, memory: &mut [f64]) {
+        self.jac.write(&mut memory[HEADER..]);
         self.lu.alpha = f64::NAN;
     }
 
@@ -216,10 +219,7 @@ impl RosenbrockW {
         let z = self.jac.z as i64;
         self.jac.shift_rollers((k as i64).rem_euclid(z) as usize);
         memory[1] += k * pitch;
-        let mut v = Vec::new();
-        self.jac.write(&mut v);
-        memory[HEADER..].copy_from_slice(&v);
-        self.lu.alpha = f64::NAN;
+        self.store_jacobian(memory);
         true
     }
 
