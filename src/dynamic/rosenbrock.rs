@@ -357,16 +357,23 @@ impl RosenbrockW {
                 rejected_in_row = 0;
                 sys.rhs(y, fsal);
                 counters.rhs += 1;
-                // PI controller for an order-3 pair (embedded order 2)
-                let fac = if err == 0.0 {
+                // PI controller for an order-3 pair (embedded order 2, local error ~ h^3),
+                // acting on the step it proposed: a step cut shorter to divide the interval
+                // equally is scored by the error the proposed one would have had
+                let (h_base, err_c) = if hs < h_max {
+                    (h_max, err * (h_max / hs).powi(3))
+                } else {
+                    (hs, err)
+                };
+                let fac = if err_c == 0.0 {
                     5.0
                 } else {
-                    0.9 * libm::pow(err, -0.7 / 3.0) * libm::pow(*err_prev, 0.4 / 3.0)
+                    0.9 * libm::pow(err_c, -0.7 / 3.0) * libm::pow(*err_prev, 0.4 / 3.0)
                 };
                 // keep the step (and the factorisation) unless it should grow by 20 % or shrink
                 let fac = if (1.0..=1.2).contains(&fac) { 1.0 } else { fac.clamp(0.2, 5.0) };
-                *err_prev = err.max(1e-4);
-                *h = (hs * fac).min(self.max_step);
+                *err_prev = err_c.max(1e-4);
+                *h = (h_base * fac).min(self.max_step);
             } else {
                 counters.rejected += 1;
                 rejected_in_row += 1;
