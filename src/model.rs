@@ -107,6 +107,14 @@ pub struct Parameters {
     pub max_step: f64,
     /// Dynamic model: threads evaluating the rollers' contacts (1: the caller's only).
     pub threads: u32,
+    /// Dynamic model: start in the steady running state when there is one (axisymmetric
+    /// loads and bearing; `dynamic/steady.rs`) instead of at the quasi-static seat.
+    #[serde(default = "yes")]
+    pub start_steady: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Parameters {
@@ -205,6 +213,7 @@ impl Parameters {
             contact_damping: 0.05,
             cone_mass: default_cone_mass(b),
             start_from_rest: false,
+            start_steady: true,
             max_step: 1e-3,
             threads: 1,
         }
@@ -857,4 +866,8 @@ pub struct SolveReport {
     pub residual: f64,
     /// Some slice interference exceeded the validity range of the line-contact law.
     pub contact_law_extrapolated: bool,
+    /// The dynamic model was to start in its steady running state (`startSteady`) but the
+    /// Newton solve found none: it started at the quasi-static seat.
+    #[serde(default)]
+    pub steady_start_failed: bool,
 }

@@ -306,7 +306,12 @@ impl Simulation {
                 if st.dynamic.is_none() {
                     // Start from the quasi-static solution (seated rollers, epicyclic speeds).
                     report = qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
-                    st.dynamic = Some(dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time));
+                    let mut start = dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time);
+                    if st.params.start_steady && dynamic.runs_steadily(&st.inputs) {
+                        // in the steady running state when there is one (dynamic/steady.rs)
+                        report.steady_start_failed = dynamic.settle(&mut start, &st.inputs).is_err();
+                    }
+                    st.dynamic = Some(start);
                 }
                 dynamic.write_outputs(st.dynamic.as_ref().expect("dynamic state"), &st.inputs, &mut st.outputs);
                 self.stiffness_stale = true;
@@ -634,6 +639,7 @@ impl Simulation {
             var::CENTRIFUGAL => p.centrifugal,
             var::CAGE_DYNAMIC => p.cage_dynamic,
             var::START_FROM_REST => p.start_from_rest,
+            var::START_STEADY => p.start_steady,
             _ => return Err(AccessError::UnknownReference(vr)),
         })
     }
@@ -653,6 +659,7 @@ impl Simulation {
             var::CENTRIFUGAL => &mut p.centrifugal,
             var::CAGE_DYNAMIC => &mut p.cage_dynamic,
             var::START_FROM_REST => &mut p.start_from_rest,
+            var::START_STEADY => &mut p.start_steady,
             _ => return Err(AccessError::UnknownReference(vr)),
         };
         if *slot != value {

@@ -68,7 +68,7 @@ pub(crate) struct Constants {
     flange: Option<FlangeConst>,
     cos_o: f64,
     half_clearance: f64,
-    lobes: u32,
+    pub(crate) lobes: u32,
     waveform: f64,
     dd_half: Vec<f64>,
     damping: f64,
@@ -1331,7 +1331,7 @@ fn evaluate_roller(
 
 /// Every roller's contacts into `records` (and `dy`, `slice_loads` when given): on the
 /// caller's thread, or spread over the element's thread pool (`threads` > 1) for a
-/// right-hand side. Each roller writes only its own record and derivatives.
+/// right-hand side with its slice loads. Each roller writes only its own record and derivatives.
 #[allow(clippy::too_many_arguments)]
 fn rollers(
     g: &Geometry,
@@ -1345,15 +1345,16 @@ fn rollers(
 ) {
     let ns = c.s_cm.len();
     match (&c.pool, dy, slice_loads.as_deref_mut()) {
-        (Some(pool), Some(dy), None) => {
+        (Some(pool), Some(dy), Some(loads)) => {
             use rayon::prelude::*;
             let per_roller = &mut dy[ROLLERS..ROLLERS + PER_ROLLER * g.z];
             pool.install(|| {
                 records
                     .par_iter_mut()
                     .zip(per_roller.par_chunks_mut(PER_ROLLER))
+                    .zip(loads.par_chunks_mut(2 * ns))
                     .enumerate()
-                    .for_each(|(j, (rec, d))| *rec = evaluate_roller(g, c, inputs, frame, y, j, Some(d), None));
+                    .for_each(|(j, ((rec, d), l))| *rec = evaluate_roller(g, c, inputs, frame, y, j, Some(d), Some(l)));
             });
         }
         (_, mut dy, _) => {

@@ -35,6 +35,7 @@ pub mod integrator;
 pub mod jacobian;
 pub mod multistep;
 pub mod rosenbrock;
+pub mod steady;
 
 use crate::bearing::Bearing;
 use crate::geometry::Geometry;
@@ -137,11 +138,52 @@ pub struct Dynamic {
     pub(crate) p: Parameters,
     pub(crate) c: contacts::Constants,
     ig: Integrator,
-    records: Vec<RollerRecord>,
-    /// ISO 281 / ISO/TS 16281 ratings (one lamina per slice) and the slice loads of the
-    /// outputs' evaluation (per roller: cone slices, then cup slices).
+    /// The contacts' last evaluation, which the outputs come from.
+    eval: Evaluation,
+    /// ISO 281 / ISO/TS 16281 ratings (one lamina per slice).
     rating: crate::rating::BearingRating,
+}
+
+/// The contacts' last evaluation: per-roller records, slice loads (per roller: cone slices,
+/// then cup slices) and totals at the state `y` with `inputs`. An integrator's last
+/// right-hand side of a communication step is at the very state the outputs are wanted for,
+/// so they are taken from it instead of from one more evaluation (the [W25] case with
+/// Rosenbrock-W in steady running: one of five evaluations per 1 ms step). They are a
+/// function of the state and the inputs alone (the parameters are fixed), so equal bits
+/// give the same outputs whatever came before, restored FMU states included.
+#[derive(Debug, Clone)]
+struct Evaluation {
+    records: Vec<RollerRecord>,
     slice_loads: Vec<f64>,
+    totals: Totals,
+    y: Vec<f64>,
+    inputs: Option<Inputs>,
+}
+
+impl Evaluation {
+    fn new(z: usize, slices: usize) -> Evaluation {
+        Evaluation {
+            records: vec![RollerRecord::default(); z],
+            slice_loads: vec![0.0; 2 * slices * z],
+            totals: Totals::default(),
+            y: Vec::new(),
+            inputs: None,
+        }
+    }
+
+    /// Evaluate the contacts at `y` (and the derivatives into `dy` when given).
+    #[allow(clippy::too_many_arguments)]
+    fn run(&mut self, g: &Geometry, p: &Parameters, c: &contacts::Constants, inputs: &Inputs, y: &[f64], dy: Option<&mut [f64]>) {
+        self.totals = contacts::evaluate(g, p, c, inputs, y, dy, &mut self.records, Some(&mut self.slice_loads));
+        self.y.clear();
+        self.y.extend_from_slice(y);
+        self.inputs = Some(*inputs);
+    }
+
+    /// Whether this is the evaluation at `y` with `inputs`.
+    fn holds(&self, inputs: &Inputs, y: &[f64]) -> bool {
+        self.inputs.as_ref() == Some(inputs) && self.y == y
+    }
 }
 
 /// The integrator selected by the parameter `integrator`.
@@ -161,15 +203,15 @@ struct Model<'a> {
     p: &'a Parameters,
     c: &'a contacts::Constants,
     inputs: &'a Inputs,
-    records: &'a mut [RollerRecord],
+    eval: &'a mut Evaluation,
 }
 
 impl BlockSystem for Model<'_> {
     fn rhs(&mut self, y: &[f64], dy: &mut [f64]) {
-        contacts::evaluate(self.g, self.p, self.c, self.inputs, y, Some(dy), self.records, None);
+        self.eval.run(self.g, self.p, self.c, self.inputs, y, Some(dy));
     }
     fn shares(&self, out: &mut [f64]) {
-        for (j, r) in self.records.iter().enumerate() {
+        for (j, r) in self.eval.records.iter().enumerate() {
             contacts::global_shares(self.c, r, &mut out[j * NG..(j + 1) * NG]);
         }
     }
@@ -184,17 +226,8 @@ impl Dynamic {
         let ig = match params.integrator {
             1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
             2 => {
-                let scale: Vec<f64> = atol.iter().map(|a| a / params.tolerance.max(MIN_TOLERANCE)).collect();
-                let force = params.causality == LoadCausality::Force;
-                let moving_x = g.axial && params.preload == Preload::Force && force;
-                let mut active = [true; NG];
-                for (k, v) in active.iter_mut().enumerate() {
-                    *v = match k {
-                        0 | 3 => moving_x,
-                        1 | 2 | 4 | 5 => force,
-                        _ => params.cage_dynamic,
-                    };
-                }
+                let scale = perturbation_scales(&g, &atol, params);
+                let active = moving_globals(&g, params);
                 let mut ig = RosenbrockW::new(g.z, atol, rtol, scale, active, params.max_step);
                 let dd = &params.roller_dd;
                 let identical = dd.iter().all(|d| *d == dd[0]);
@@ -208,9 +241,8 @@ impl Dynamic {
             _ => Integrator::Dopri5(Dopri5::new(n, atol, rtol, params.max_step)),
         };
         Ok(Dynamic {
-            records: vec![RollerRecord::default(); g.z],
+            eval: Evaluation::new(g.z, params.slices),
             rating: crate::rating::BearingRating::new(bearing, params.slices),
-            slice_loads: vec![0.0; 2 * params.slices * g.z],
             g,
             p: params.clone(),
             c,
@@ -293,6 +325,51 @@ impl Dynamic {
         }
     }
 
+    /// Whether the bearing runs steadily, seen from the cage, with `inputs` held: loads and
+    /// bearing axisymmetric (no radial load or displacement, no misalignment, identical
+    /// rollers, round rings), rollers and cage moving (not `startFromRest`), a dynamic cage.
+    /// Then every roller runs in the same state relative to its pocket, and that state is
+    /// the one the model settles to; otherwise the running state is periodic in the orbit.
+    pub fn runs_steadily(&self, inputs: &Inputs) -> bool {
+        let radial = match self.p.causality {
+            LoadCausality::Force => inputs.fy != 0.0 || inputs.fz != 0.0,
+            LoadCausality::Displacement => inputs.displacement[1] != 0.0 || inputs.displacement[2] != 0.0,
+        };
+        let dd = &self.p.roller_dd;
+        !radial
+            && inputs.xi == 0.0
+            && inputs.zeta == 0.0
+            && dd.iter().all(|d| *d == dd[0])
+            && self.c.lobes == 0
+            && self.p.cage_dynamic
+            && !self.p.start_from_rest
+    }
+
+    /// Move `state` to the steady running state for `inputs`, seen from the cage
+    /// (`steady.rs`). Returns the Newton iterations and right-hand sides it took; on failure
+    /// `state` is unchanged.
+    pub fn settle(&mut self, state: &mut DynamicState, inputs: &Inputs) -> Result<(u32, u64), steady::NoSteadyState> {
+        let n = self.n_states();
+        let (atol, _) = tolerances(&self.g, &self.c, &self.p, inputs.relative_speed().abs().max(100.0), n);
+        let tol = self.p.tolerance.max(MIN_TOLERANCE);
+        let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
+        let perturbation = perturbation_scales(&self.g, &atol, &self.p);
+        let active = moving_globals(&self.g, &self.p);
+        let mut model = Model {
+            g: &self.g,
+            p: &self.p,
+            c: &self.c,
+            inputs,
+            eval: &mut self.eval,
+        };
+        let mut y = state.y.clone();
+        let done = steady::SteadySolver::new(self.g.z).solve(&mut model, &mut y, &scale, &perturbation, &active)?;
+        state.y = y;
+        state.fsal.clear();
+        state.memory.clear();
+        Ok(done)
+    }
+
     /// Integrate from `state.t` to `t_end` with `inputs` held.
     pub fn advance(&mut self, state: &mut DynamicState, inputs: &Inputs, t_end: f64) -> Result<(), ModelError> {
         self.check_film_heating(inputs)?;
@@ -316,12 +393,12 @@ impl Dynamic {
             }
         }
         let this = &mut *self;
-        let (g, p, c, records, inp) = (&this.g, &this.p, &this.c, &mut this.records, inputs);
+        let (g, p, c, eval, inp) = (&this.g, &this.p, &this.c, &mut this.eval, inputs);
         let mut t = state.t;
         let result = match &mut this.ig {
             Integrator::Dopri5(ig) => ig.integrate(
                 |_t, y, dy| {
-                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records, None);
+                    eval.run(g, p, c, inp, y, Some(dy));
                 },
                 &mut t,
                 &mut state.y,
@@ -332,7 +409,7 @@ impl Dynamic {
             ),
             Integrator::MilneHamming(ig) => ig.integrate(
                 |y, dy| {
-                    let _ = contacts::evaluate(g, p, c, inp, y, Some(dy), records, None);
+                    eval.run(g, p, c, inp, y, Some(dy));
                 },
                 &mut t,
                 &mut state.y,
@@ -347,7 +424,7 @@ impl Dynamic {
                     p,
                     c,
                     inputs: inp,
-                    records,
+                    eval,
                 };
                 ig.integrate(
                     &mut model,
@@ -382,22 +459,16 @@ impl Dynamic {
 
     /// Fill `out` from `state`.
     pub fn write_outputs(&mut self, state: &DynamicState, inputs: &Inputs, out: &mut Outputs) {
+        if !self.eval.holds(inputs, &state.y) {
+            self.eval.run(&self.g, &self.p, &self.c, inputs, &state.y, None);
+        }
         let g = &self.g;
-        let totals = contacts::evaluate(
-            g,
-            &self.p,
-            &self.c,
-            inputs,
-            &state.y,
-            None,
-            &mut self.records,
-            Some(&mut self.slice_loads),
-        );
+        let totals = self.eval.totals;
         let y = &state.y;
         let z = g.z;
         for j in 0..z {
             let o = ROLLERS + PER_ROLLER * j;
-            let r = &self.records[j];
+            let r = &self.eval.records[j];
             out.tilt[j] = y[o + 6];
             out.skew[j] = y[o + 7];
             out.azimuth[j] = y[o + 2].rem_euclid(TAU);
@@ -425,7 +496,7 @@ impl Dynamic {
         out.rating_c = self.rating.c_r;
         let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
         out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
-        out.life_l10r = self.rating.life_l10r(&self.slice_loads, inputs.speed, inputs.cup_speed);
+        out.life_l10r = self.rating.life_l10r(&self.eval.slice_loads, inputs.speed, inputs.cup_speed);
         out.cage_speed = contacts::cage_speed(g, &self.p, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
         // With the cup turning too it is the torque between the rings: in steady running the
@@ -495,7 +566,7 @@ impl Dynamic {
 
     /// Right-hand side at `state` (for tests and benchmarks).
     pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
-        contacts::evaluate(&self.g, &self.p, &self.c, inputs, y, Some(dy), &mut self.records, None);
+        self.eval.run(&self.g, &self.p, &self.c, inputs, y, Some(dy));
     }
 }
 
@@ -563,6 +634,35 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
         }
     }
     (atol, rtol)
+}
+
+/// The floors of the finite differences' perturbations, per state (the perturbation of state
+/// i is sqrt(eps) max(|y_i|, floor_i)): the tolerance scales, except for the azimuths of the
+/// rollers and the cage, angles of order one whatever their magnitude, floored at 1 rad. With
+/// the tolerance scale (1e-4 rad) an azimuth at 0 — the cage and roller 1 at t = 0 — was
+/// perturbed by 2e-12 rad and its Jacobian column was round-off: Rosenbrock-W from the
+/// steady [W25] state at tolerance 1e-5 then took 137 steps in 20 ms where one per 1 ms
+/// interval holds the tolerance (31 steps with the floor).
+fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
+    let tol = p.tolerance.max(MIN_TOLERANCE);
+    let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
+    scale[CAGE + 2] = 1.0;
+    for j in 0..g.z {
+        scale[ROLLERS + PER_ROLLER * j + 2] = 1.0;
+    }
+    scale
+}
+
+/// The global states that move: the cone's translations under force inputs (axially only
+/// in force preload), the cage's if it is dynamic. The others are prescribed or unused.
+fn moving_globals(g: &Geometry, p: &Parameters) -> [bool; NG] {
+    let force = p.causality == LoadCausality::Force;
+    let moving_x = g.axial && p.preload == Preload::Force && force;
+    std::array::from_fn(|k| match k {
+        0 | 3 => moving_x,
+        1 | 2 | 4 | 5 => force,
+        _ => p.cage_dynamic,
+    })
 }
 
 /// Rotation matrix of the small rotation vector (0, xi, zeta) (Rodrigues), the cone's

@@ -29,6 +29,8 @@ pub struct Instance {
     snapshots: Vec<*mut Snapshot>,
     /// The contact-law extrapolation warning was logged already.
     warned_extrapolation: bool,
+    /// The failed steady start (`startSteady`) was logged already.
+    warned_steady_start: bool,
 }
 
 /// Rounding noise allowed when comparing communication points.
@@ -134,6 +136,7 @@ impl Instance {
             clock: Clock::NEW,
             snapshots: Vec::new(),
             warned_extrapolation: false,
+            warned_steady_start: false,
         }))
     }
 
@@ -224,6 +227,14 @@ impl Instance {
                     self.clock.time, report.iterations, report.residual
                 ),
             );
+        }
+        if report.steady_start_failed && !self.warned_steady_start {
+            self.warned_steady_start = true;
+            self.log.warning(format_args!(
+                "t = {}: startSteady: no steady running state found (Newton on the dynamic equations did not converge); \
+                 the dynamic model starts at the quasi-static seat and its start-up transient is simulated",
+                self.clock.time
+            ));
         }
         if report.contact_law_extrapolated && !self.warned_extrapolation {
             self.warned_extrapolation = true;
@@ -378,6 +389,7 @@ impl Instance {
         self.clock = Clock::NEW;
         self.machine = Machine::Alive(State::Instantiated);
         self.warned_extrapolation = false;
+        self.warned_steady_start = false;
         self.log.event(format_args!("fmi2Reset"));
         FMI2_OK
     }

@@ -1380,6 +1380,7 @@ impl QuasiStatic {
                     iterations,
                     residual: max_r / f_ref,
                     contact_law_extrapolated: extrapolated,
+                    ..SolveReport::default()
                 });
             }
             if iterations >= MAX_ITERATIONS {
@@ -1436,6 +1437,7 @@ impl QuasiStatic {
                     iterations,
                     residual: max_r / f_ref,
                     contact_law_extrapolated: extrapolated,
+                    ..SolveReport::default()
                 });
             }
         }

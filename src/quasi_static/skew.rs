@@ -742,6 +742,7 @@ impl QuasiStatic {
             iterations,
             residual: max_r / f_ref,
             contact_law_extrapolated: false,
+            ..SolveReport::default()
         };
         self.write_skew_outputs(&x, &evals, inputs, report, out);
         x.push(cage_angle);
