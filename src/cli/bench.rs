@@ -500,7 +500,16 @@ fn targets(d: &mut String, results: &[ScenarioResult], k: &Kernels, long: &[Long
                     _ => String::new(),
                 };
                 (
-                    format!("{:.1} s wall ({} steps, {} RHS{whole})", t.wall, t.steps, t.rhs),
+                    format!(
+                        "{} s wall ({} steps, {} RHS{whole})",
+                        if t.wall < 10.0 {
+                            format!("{:.2}", t.wall)
+                        } else {
+                            format!("{:.1}", t.wall)
+                        },
+                        t.steps,
+                        t.rhs
+                    ),
                     status(t.wall, goal).to_string(),
                 )
             }
