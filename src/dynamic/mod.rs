@@ -350,6 +350,7 @@ impl Dynamic {
     /// `state` is unchanged.
     pub fn settle(&mut self, state: &mut DynamicState, inputs: &Inputs) -> Result<(u32, u64), steady::NoSteadyState> {
         let n = self.n_states();
+        // scales at the running speed (the integrators' are set once, at the preset's speed)
         let (atol, _) = tolerances(&self.g, &self.c, &self.p, inputs.relative_speed().abs().max(100.0), n);
         let tol = self.p.tolerance.max(MIN_TOLERANCE);
         let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
