@@ -567,7 +567,8 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
          Written by `cargo run --release -- study w25` (src/cli/study/w25.rs) from the scenarios in \
          `scenarios/w25_dynamic/` (run any of them with `trb simulate`). Every number comes from the dynamic model \
          the FMU runs at `fidelity` = 1 (docs/dynamic.md) for the TRB130x230 preset as published, 20 slices, \
-         tolerance 1e-6, 50 ms per case from the quasi-static start. Source: [W25] Wu, Kang, Deng, Lubricants \
+         tolerance 1e-6, 50 ms per case, from the steady running state where there is one (`startSteady`: no radial \
+         load, no deflection) and from the quasi-static seat otherwise. Source: [W25] Wu, Kang, Deng, Lubricants \
          13(10):438, 2025. Angles in degrees (tilt in millidegrees).\n\n{md}"
     );
     let path = docs.join("results-dynamic.md");
