@@ -229,12 +229,10 @@ impl Dynamic {
                 let scale = perturbation_scales(&g, &atol, params);
                 let active = moving_globals(&g, params);
                 let mut ig = RosenbrockW::new(g.z, atol, rtol, scale, active, params.max_step);
-                let dd = &params.roller_dd;
-                let identical = dd.iter().all(|d| *d == dd[0]);
                 ig.orbit = Some(rosenbrock::Orbit {
                     state: ROLLERS + 2,
                     turn: JACOBIAN_TURN,
-                    pitch: identical.then(|| TAU / g.z as f64),
+                    pitch: identical_rollers(params).then(|| TAU / g.z as f64),
                 });
                 Integrator::Rosenbrock(Box::new(ig))
             }
@@ -335,11 +333,10 @@ impl Dynamic {
             LoadCausality::Force => inputs.fy != 0.0 || inputs.fz != 0.0,
             LoadCausality::Displacement => inputs.displacement[1] != 0.0 || inputs.displacement[2] != 0.0,
         };
-        let dd = &self.p.roller_dd;
         !radial
             && inputs.xi == 0.0
             && inputs.zeta == 0.0
-            && dd.iter().all(|d| *d == dd[0])
+            && identical_rollers(&self.p)
             && self.c.lobes == 0
             && self.p.cage_dynamic
             && !self.p.start_from_rest
@@ -652,6 +649,11 @@ fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
         scale[ROLLERS + PER_ROLLER * j + 2] = 1.0;
     }
     scale
+}
+
+/// Whether every roller has the same diameter deviation (the rollers are interchangeable).
+fn identical_rollers(p: &Parameters) -> bool {
+    p.roller_dd.iter().all(|d| *d == p.roller_dd[0])
 }
 
 /// The global states that move: the cone's translations under force inputs (axially only
