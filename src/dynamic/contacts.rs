@@ -1331,7 +1331,8 @@ fn evaluate_roller(
 
 /// Every roller's contacts into `records` (and `dy`, `slice_loads` when given): on the
 /// caller's thread, or spread over the element's thread pool (`threads` > 1) for a
-/// right-hand side with its slice loads. Each roller writes only its own record and derivatives.
+/// right-hand side with its slice loads. Each roller writes only its own record, derivatives
+/// and slice loads.
 #[allow(clippy::too_many_arguments)]
 fn rollers(
     g: &Geometry,
