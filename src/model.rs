@@ -87,7 +87,8 @@ pub struct Parameters {
     /// Diameter deviation of each roller (m), one per roller.
     pub roller_dd: Vec<f64>,
     /// Dynamic model: integrator (0 = adaptive Dormand-Prince 5(4), 1 = Gill + Milne-Hamming
-    /// at the fixed step `max_step`, 2 = Rosenbrock-W ROS34PW2 with the block Jacobian).
+    /// at the fixed step `max_step`, 2 = Rosenbrock-W ROS34PW2 with the block Jacobian,
+    /// 3 = automatic: the cheaper of 0 and 2 per communication interval).
     pub integrator: u32,
     /// Dynamic model: 3-DOF cage (radial translations and rotation) driven by its contacts;
     /// false: kinematic cage centred at the mean roller orbit.
@@ -337,11 +338,11 @@ impl Parameters {
                 );
             }
         }
-        if self.integrator > 2 {
+        if self.integrator > 3 {
             return bad(
                 "integrator",
                 format!(
-                    "must be 0 (adaptive Dormand-Prince 5(4)), 1 (Gill + Milne-Hamming, fixed step maxStep) or 2 (Rosenbrock-W ROS34PW2), got {}",
+                    "must be 0 (adaptive Dormand-Prince 5(4)), 1 (Gill + Milne-Hamming, fixed step maxStep), 2 (Rosenbrock-W ROS34PW2) or 3 (automatic: the cheaper of 0 and 2 per communication step), got {}",
                     self.integrator
                 ),
             );

@@ -98,6 +98,9 @@ pub enum Failure {
     /// Fixed-step method: the local error estimate exceeded the tolerance by the factor
     /// `estimate` (unstable or far too long a step `h`).
     FixedStepTooLong { t: f64, h: f64, estimate: f64 },
+    /// More right-hand sides than the budget for one interval (the automatic integrator's
+    /// limit on Rosenbrock-W); `t` and the state are those of the last accepted step.
+    OverBudget { t: f64 },
 }
 
 impl Failure {

@@ -178,7 +178,7 @@ impl BlockJacobian {
         count
     }
 
-    /// y = J x (for tests).
+    /// y = J x (tests; power iteration for the spectral radius).
     pub fn apply(&self, x: &[f64], y: &mut [f64]) {
         let z = self.z;
         let (xg, xr) = x.split_at(NG);

@@ -36,6 +36,7 @@ pub mod jacobian;
 pub mod multistep;
 pub mod rosenbrock;
 pub mod steady;
+pub mod switching;
 
 use crate::bearing::Bearing;
 use crate::geometry::Geometry;
@@ -71,6 +72,9 @@ pub struct DynamicState {
     pub fsal_inputs: Option<Inputs>,
     /// Further integrator memory (Milne-Hamming history, Rosenbrock-W Jacobian); empty: none.
     pub memory: Vec<f64>,
+    /// The automatic integrator's choice and its memory (`integrator` = 3).
+    #[serde(default)]
+    pub switch: switching::MethodSwitch,
 }
 
 /// Per-roller results of one evaluation, for the outputs.
@@ -195,6 +199,8 @@ enum Integrator {
     MilneHamming(MilneHamming),
     /// 2: Rosenbrock-W ROS34PW2 with the block Jacobian.
     Rosenbrock(Box<RosenbrockW>),
+    /// 3: the cheaper of the two per communication interval (`switching.rs`).
+    Automatic { explicit: Dopri5, implicit: Box<RosenbrockW> },
 }
 
 /// The model as the implicit integrator sees it.
@@ -223,19 +229,24 @@ impl Dynamic {
         let c = contacts::Constants::new(bearing, params, &g);
         let n = ROLLERS + PER_ROLLER * g.z;
         let (atol, rtol) = tolerances(&g, &c, params, bearing.speed.abs().max(100.0), n);
+        let implicit = || {
+            let scale = perturbation_scales(&g, &atol, params);
+            let active = moving_globals(&g, params);
+            let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
+            ig.orbit = Some(rosenbrock::Orbit {
+                state: ROLLERS + 2,
+                turn: JACOBIAN_TURN,
+                pitch: identical_rollers(params).then(|| TAU / g.z as f64),
+            });
+            Box::new(ig)
+        };
         let ig = match params.integrator {
             1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
-            2 => {
-                let scale = perturbation_scales(&g, &atol, params);
-                let active = moving_globals(&g, params);
-                let mut ig = RosenbrockW::new(g.z, atol, rtol, scale, active, params.max_step);
-                ig.orbit = Some(rosenbrock::Orbit {
-                    state: ROLLERS + 2,
-                    turn: JACOBIAN_TURN,
-                    pitch: identical_rollers(params).then(|| TAU / g.z as f64),
-                });
-                Integrator::Rosenbrock(Box::new(ig))
-            }
+            2 => Integrator::Rosenbrock(implicit()),
+            3 => Integrator::Automatic {
+                implicit: implicit(),
+                explicit: Dopri5::new(n, atol.clone(), rtol.clone(), params.max_step),
+            },
             _ => Integrator::Dopri5(Dopri5::new(n, atol, rtol, params.max_step)),
         };
         Ok(Dynamic {
@@ -320,6 +331,7 @@ impl Dynamic {
             fsal: Vec::new(),
             fsal_inputs: None,
             memory: Vec::new(),
+            switch: switching::MethodSwitch::default(),
         }
     }
 
@@ -376,7 +388,7 @@ impl Dynamic {
             // an implicit integrator's Jacobian
             state.fsal.clear();
             state.fsal_inputs = Some(*inputs);
-            if let Integrator::Rosenbrock(_) = self.ig {
+            if let Integrator::Rosenbrock(_) | Integrator::Automatic { .. } = self.ig {
                 rosenbrock::mark_jacobian_stale(&mut state.memory);
             }
         }
@@ -394,17 +406,7 @@ impl Dynamic {
         let (g, p, c, eval, inp) = (&this.g, &this.p, &this.c, &mut this.eval, inputs);
         let mut t = state.t;
         let result = match &mut this.ig {
-            Integrator::Dopri5(ig) => ig.integrate(
-                |_t, y, dy| {
-                    eval.run(g, p, c, inp, y, Some(dy));
-                },
-                &mut t,
-                &mut state.y,
-                t_end,
-                &mut state.step,
-                &mut state.counters,
-                &mut state.fsal,
-            ),
+            Integrator::Dopri5(ig) => run_explicit(ig, g, p, c, eval, inp, &mut t, state, t_end),
             Integrator::MilneHamming(ig) => ig.integrate(
                 |y, dy| {
                     eval.run(g, p, c, inp, y, Some(dy));
@@ -416,24 +418,43 @@ impl Dynamic {
                 &mut state.fsal,
                 &mut state.memory,
             ),
-            Integrator::Rosenbrock(ig) => {
-                let mut model = Model {
-                    g,
-                    p,
-                    c,
-                    inputs: inp,
-                    eval,
-                };
-                ig.integrate(
-                    &mut model,
-                    &mut t,
-                    &mut state.y,
-                    t_end,
-                    &mut state.step,
-                    &mut state.counters,
-                    &mut state.fsal,
-                    &mut state.memory,
-                )
+            Integrator::Rosenbrock(ig) => run_implicit(ig, g, p, c, eval, inp, &mut t, state, t_end),
+            Integrator::Automatic { explicit, implicit } => {
+                let mut result = Ok(());
+                if state.switch.implicit {
+                    let (t0, rhs0) = (t, state.counters.rhs);
+                    implicit.rhs_budget = state.switch.implicit_budget(t_end - t);
+                    result = run_implicit(implicit, g, p, c, eval, inp, &mut t, state, t_end);
+                    let sw = &mut state.switch;
+                    if sw.rho_jacobians != state.counters.jacobians {
+                        sw.rho = implicit.spectral_radius();
+                        sw.rho_jacobians = state.counters.jacobians;
+                    }
+                    let leave = match result {
+                        // over budget, or failed: the explicit method finishes the interval
+                        // from the last accepted step (a failed Rosenbrock-W step changes
+                        // nothing of the state)
+                        Err(Failure::OverBudget { .. } | Failure::StepTooSmall { .. } | Failure::NotFinite { .. } | Failure::TooManySteps { .. }) => {
+                            result = Ok(());
+                            sw.give_up_implicit();
+                            true
+                        }
+                        Ok(()) if t > t0 => sw.after_interval((state.counters.rhs - rhs0) as f64 / (t - t0)),
+                        _ => false,
+                    };
+                    if leave {
+                        sw.switch(&mut state.step);
+                    }
+                }
+                if !state.switch.implicit && t < t_end && result.is_ok() {
+                    let (t0, rhs0) = (t, state.counters.rhs);
+                    result = run_explicit(explicit, g, p, c, eval, inp, &mut t, state, t_end);
+                    if result.is_ok() && state.switch.after_interval((state.counters.rhs - rhs0) as f64 / (t - t0)) {
+                        state.switch.switch(&mut state.step);
+                        rosenbrock::mark_jacobian_stale(&mut state.memory);
+                    }
+                }
+                result
             }
         };
         state.t = t;
@@ -446,6 +467,7 @@ impl Dynamic {
                 ),
                 Failure::NotFinite { t } => format!("the state became non-finite at t = {t:.9} s"),
                 Failure::TooManySteps { t, steps } => format!("more than {steps} steps in one communication interval (t = {t:.9} s)"),
+                Failure::OverBudget { t } => format!("the right-hand-side budget of one interval ran out at t = {t:.9} s"),
                 Failure::FixedStepTooLong { t, h, estimate } => format!(
                     "the fixed step {h:.3e} s (maxStep) is unstable or too long: the local error estimate (Milne) is {estimate:.1e} times the tolerance {:.1e} at t = {t:.9} s; reduce maxStep",
                     self.p.tolerance.max(MIN_TOLERANCE)
@@ -566,6 +588,58 @@ impl Dynamic {
     pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
         self.eval.run(&self.g, &self.p, &self.c, inputs, y, Some(dy));
     }
+}
+
+/// One interval of Dormand–Prince on the model.
+#[allow(clippy::too_many_arguments)]
+fn run_explicit(
+    ig: &mut Dopri5,
+    g: &Geometry,
+    p: &Parameters,
+    c: &contacts::Constants,
+    eval: &mut Evaluation,
+    inputs: &Inputs,
+    t: &mut f64,
+    state: &mut DynamicState,
+    t_end: f64,
+) -> Result<(), Failure> {
+    ig.integrate(
+        |_t, y, dy| {
+            eval.run(g, p, c, inputs, y, Some(dy));
+        },
+        t,
+        &mut state.y,
+        t_end,
+        &mut state.step,
+        &mut state.counters,
+        &mut state.fsal,
+    )
+}
+
+/// One interval of Rosenbrock-W on the model.
+#[allow(clippy::too_many_arguments)]
+fn run_implicit(
+    ig: &mut RosenbrockW,
+    g: &Geometry,
+    p: &Parameters,
+    c: &contacts::Constants,
+    eval: &mut Evaluation,
+    inputs: &Inputs,
+    t: &mut f64,
+    state: &mut DynamicState,
+    t_end: f64,
+) -> Result<(), Failure> {
+    let mut model = Model { g, p, c, inputs, eval };
+    ig.integrate(
+        &mut model,
+        t,
+        &mut state.y,
+        t_end,
+        &mut state.step,
+        &mut state.counters,
+        &mut state.fsal,
+        &mut state.memory,
+    )
 }
 
 /// Absolute and relative tolerances per state component: positions to `tol` of a 10 um

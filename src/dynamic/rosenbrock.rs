@@ -67,6 +67,8 @@ pub struct RosenbrockW {
     pub step_budget: u64,
     /// Accepted steps a Jacobian serves at most.
     pub max_age: u64,
+    /// Right-hand sides one call may evaluate before it stops with `Failure::OverBudget`.
+    pub rhs_budget: u64,
     /// How the Jacobian follows the rollers' orbit; `None`: it does not.
     pub orbit: Option<Orbit>,
     /// Refactor when 1/(h gamma) differs from the factored value by more than this ratio.
@@ -154,6 +156,7 @@ impl RosenbrockW {
             max_step,
             step_budget: 50_000_000,
             max_age: 200,
+            rhs_budget: u64::MAX,
             orbit: None,
             refactor_ratio: 1e-12,
             jac: BlockJacobian::zeros(z),
@@ -223,6 +226,37 @@ impl RosenbrockW {
         true
     }
 
+    /// Estimate of the spectral radius (1/s) of the Jacobian of the last call, by power
+    /// iteration from the absolute tolerances' direction, norms in the tolerance-scaled
+    /// coordinates: the geometric mean growth over iterations 20..40 (a lightly damped complex
+    /// pair, as the contact modes are, makes single ratios oscillate).
+    pub fn spectral_radius(&mut self) -> f64 {
+        let n = self.n;
+        let (v, rest) = self.work.split_at_mut(n);
+        let w = &mut rest[..n];
+        v.copy_from_slice(&self.atol);
+        let norm = |x: &[f64], atol: &[f64]| x.iter().zip(atol).map(|(a, s)| (a / s) * (a / s)).sum::<f64>().sqrt();
+        let mut sum_log = 0.0;
+        let mut counted = 0;
+        let mut nv = norm(v, &self.atol);
+        for k in 0..40 {
+            self.jac.apply(v, w);
+            let nw = norm(w, &self.atol);
+            if !(nw.is_finite() && nw > 0.0 && nv > 0.0) {
+                return f64::NAN;
+            }
+            if k >= 20 {
+                sum_log += libm::log(nw / nv);
+                counted += 1;
+            }
+            for (a, b) in v.iter_mut().zip(w.iter()) {
+                *a = *b / nw;
+            }
+            nv = 1.0;
+        }
+        libm::exp(sum_log / counted as f64)
+    }
+
     /// Integrate `y` from `t` to `t_end`; `step` the controller state (its proposed step updated), `fsal` the
     /// derivative at (t, y) or empty, `memory` the Jacobian and its age or empty.
     #[allow(clippy::too_many_arguments)]
@@ -261,7 +295,11 @@ impl RosenbrockW {
             *h = self.max_step.min(1e-6);
         }
         let mut rejected_in_row = 0u32;
+        let rhs_at_start = counters.rhs;
         while *t < t_end {
+            if counters.rhs - rhs_at_start > self.rhs_budget {
+                return Err(Failure::OverBudget { t: *t });
+            }
             let remaining = t_end - *t;
             if remaining <= h_floor(t_end) {
                 *t = t_end;

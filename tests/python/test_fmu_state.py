@@ -154,8 +154,8 @@ def test_restoring_a_state_taken_before_a_failed_step_recovers(running, model):
 
 @pytest.mark.parametrize(
     "fidelity,integrator",
-    [(0, 0), (1, 0), (1, 1), (1, 2)],
-    ids=["quasi-static", "dormand-prince", "milne-hamming", "rosenbrock-w"],
+    [(0, 0), (1, 0), (1, 1), (1, 2), (1, 3)],
+    ids=["quasi-static", "dormand-prince", "milne-hamming", "rosenbrock-w", "automatic"],
 )
 def test_serialized_state_replays_bit_for_bit_at_every_fidelity(slaves, model, fidelity, integrator):
     """serialize -> deserialize (the same instance after it stepped on, and a fresh one) ->
