@@ -434,7 +434,12 @@ impl Dynamic {
                         // over budget, or failed: the explicit method finishes the interval
                         // from the last accepted step (a failed Rosenbrock-W step changes
                         // nothing of the state)
-                        Err(Failure::OverBudget { .. } | Failure::StepTooSmall { .. } | Failure::NotFinite { .. } | Failure::TooManySteps { .. }) => {
+                        Err(
+                            Failure::OverBudget { .. }
+                            | Failure::StepTooSmall { .. }
+                            | Failure::NotFinite { .. }
+                            | Failure::TooManySteps { .. },
+                        ) => {
                             result = Ok(());
                             sw.give_up_implicit();
                             true

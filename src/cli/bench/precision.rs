@@ -31,13 +31,18 @@ pub const OUTPUTS: [(&str, f64); 11] = [
 const TORQUE_SKEW: [usize; 3] = [0, 1, 5];
 
 /// The integrator families, in report order: (integrator parameter value, name, short name).
-pub const FAMILIES: [(i32, &str, &str); 3] = [
-    (0, "Dormand–Prince 5(4), adaptive (default)", "Dormand–Prince"),
+pub const FAMILIES: [(i32, &str, &str); 4] = [
+    (0, "Dormand–Prince 5(4), adaptive", "Dormand–Prince"),
     (2, "Rosenbrock-W ROS34PW2, adaptive, block Jacobian", "Rosenbrock-W"),
+    (
+        3,
+        "automatic: Dormand–Prince or Rosenbrock-W per communication step (default)",
+        "automatic",
+    ),
     (1, "Gill RK + Milne–Hamming, fixed step (the [W25] method)", "Gill/Milne–Hamming"),
 ];
 
-/// One integrator setting: `integrator` with `tolerance` (0, 2) or the fixed step `maxStep` (1).
+/// One integrator setting: `integrator` with `tolerance` (0, 2, 3) or the fixed step `maxStep` (1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Method {
     pub integrator: i32,
@@ -86,11 +91,12 @@ impl Method {
 pub fn sweep(quick: bool) -> Vec<Method> {
     let m = |integrator, setting| Method { integrator, setting };
     if quick {
-        return vec![m(0, 1e-6), m(2, 1e-4), m(1, 2e-6)];
+        return vec![m(0, 1e-6), m(2, 1e-4), m(3, 1e-6), m(1, 2e-6)];
     }
     let mut all = Vec::new();
     all.extend([1e-4, 1e-5, 1e-6, 1e-7, 1e-8].map(|t| m(0, t)));
     all.extend([1e-2, 1e-3, 1e-4, 1e-5, 1e-6].map(|t| m(2, t)));
+    all.extend([1e-4, 1e-5, 1e-6, 1e-7].map(|t| m(3, t)));
     all.extend([0.5e-6, 1e-6, 2e-6, 3e-6].map(|h| m(1, h)));
     all
 }
