@@ -509,7 +509,7 @@ fn w25_section(runs: &W25Runs, plan: &Plan, ledger: &mut Ledger) -> String {
     let mut md = format!(
         "## 1. [W25] Roller tilt and skew under shaft deflection (TRB130x230, dynamic model)\n\n\
          The product's dynamic model (`fidelity` = 1, docs/dynamic.md) on the scenarios of `scenarios/w25_dynamic/` \
-         (TRB130x230 as published, 20 slices, adaptive Dormand–Prince at tolerance 1e-6), each run {} ms, once \
+         (TRB130x230 as published, 20 slices, the default automatic integrator at tolerance 1e-6), each run {} ms, once \
          per traction law, from the steady running state where there is one (`startSteady`: no radial load, no \
          deflection) and from the quasi-static seat otherwise; statistics over the second half of each run \
          (`src/cli/study/w25.rs`). θavg, ϕavg: mean of |tilt|, |skew| over the rollers and the samples; θmax, ϕmax: \
