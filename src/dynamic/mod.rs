@@ -419,48 +419,7 @@ impl Dynamic {
                 &mut state.memory,
             ),
             Integrator::Rosenbrock(ig) => run_implicit(ig, g, p, c, eval, inp, &mut t, state, t_end),
-            Integrator::Automatic { explicit, implicit } => {
-                let mut result = Ok(());
-                if state.switch.implicit {
-                    let (t0, rhs0) = (t, state.counters.rhs);
-                    implicit.rhs_budget = state.switch.implicit_budget(t_end - t);
-                    result = run_implicit(implicit, g, p, c, eval, inp, &mut t, state, t_end);
-                    let sw = &mut state.switch;
-                    if sw.rho_jacobians != state.counters.jacobians {
-                        sw.rho = implicit.spectral_radius();
-                        sw.rho_jacobians = state.counters.jacobians;
-                    }
-                    let leave = match result {
-                        // over budget, or failed: the explicit method finishes the interval
-                        // from the last accepted step (a failed Rosenbrock-W step changes
-                        // nothing of the state)
-                        Err(
-                            Failure::OverBudget { .. }
-                            | Failure::StepTooSmall { .. }
-                            | Failure::NotFinite { .. }
-                            | Failure::TooManySteps { .. },
-                        ) => {
-                            result = Ok(());
-                            sw.give_up_implicit();
-                            true
-                        }
-                        Ok(()) if t > t0 => sw.after_interval((state.counters.rhs - rhs0) as f64 / (t - t0)),
-                        _ => false,
-                    };
-                    if leave {
-                        sw.switch(&mut state.step);
-                    }
-                }
-                if !state.switch.implicit && t < t_end && result.is_ok() {
-                    let (t0, rhs0) = (t, state.counters.rhs);
-                    result = run_explicit(explicit, g, p, c, eval, inp, &mut t, state, t_end);
-                    if result.is_ok() && state.switch.after_interval((state.counters.rhs - rhs0) as f64 / (t - t0)) {
-                        state.switch.switch(&mut state.step);
-                        rosenbrock::mark_jacobian_stale(&mut state.memory);
-                    }
-                }
-                result
-            }
+            Integrator::Automatic { explicit, implicit } => run_automatic(explicit, implicit, g, p, c, eval, inp, &mut t, state, t_end),
         };
         state.t = t;
         result.map_err(|f| {
@@ -645,6 +604,59 @@ fn run_implicit(
         &mut state.fsal,
         &mut state.memory,
     )
+}
+
+/// One interval of the automatic integrator (`switching.rs`): Rosenbrock-W on its budget
+/// while it is the chosen method, Dormand–Prince for the rest of the interval where it runs
+/// over or fails, or for the whole interval when it is the chosen one; the choice for the next
+/// interval from the cost of this one.
+#[allow(clippy::too_many_arguments)]
+fn run_automatic(
+    explicit: &mut Dopri5,
+    implicit: &mut RosenbrockW,
+    g: &Geometry,
+    p: &Parameters,
+    c: &contacts::Constants,
+    eval: &mut Evaluation,
+    inputs: &Inputs,
+    t: &mut f64,
+    state: &mut DynamicState,
+    t_end: f64,
+) -> Result<(), Failure> {
+    let mut result = Ok(());
+    if state.switch.implicit {
+        let (t0, rhs0) = (*t, state.counters.rhs);
+        implicit.rhs_budget = state.switch.implicit_budget(t_end - *t);
+        result = run_implicit(implicit, g, p, c, eval, inputs, t, state, t_end);
+        let sw = &mut state.switch;
+        if sw.rho_jacobians != state.counters.jacobians {
+            sw.rho = implicit.spectral_radius();
+            sw.rho_jacobians = state.counters.jacobians;
+        }
+        let leave = match result {
+            // over budget, or failed: the explicit method finishes the interval from the last
+            // accepted step (a failed Rosenbrock-W step changes nothing of the state)
+            Err(Failure::OverBudget { .. } | Failure::StepTooSmall { .. } | Failure::NotFinite { .. } | Failure::TooManySteps { .. }) => {
+                result = Ok(());
+                sw.give_up_implicit();
+                true
+            }
+            Ok(()) if *t > t0 => sw.after_interval((state.counters.rhs - rhs0) as f64 / (*t - t0)),
+            _ => false,
+        };
+        if leave {
+            sw.switch(&mut state.step);
+        }
+    }
+    if !state.switch.implicit && *t < t_end && result.is_ok() {
+        let (t0, rhs0) = (*t, state.counters.rhs);
+        result = run_explicit(explicit, g, p, c, eval, inputs, t, state, t_end);
+        if result.is_ok() && state.switch.after_interval((state.counters.rhs - rhs0) as f64 / (*t - t0)) {
+            state.switch.switch(&mut state.step);
+            rosenbrock::mark_jacobian_stale(&mut state.memory);
+        }
+    }
+    result
 }
 
 /// Absolute and relative tolerances per state component: positions to `tol` of a 10 um
