@@ -402,15 +402,18 @@ impl Dynamic {
                 }
             }
         }
-        let this = &mut *self;
-        let (g, p, c, eval, inp) = (&this.g, &this.p, &this.c, &mut this.eval, inputs);
+        let mut model = Model {
+            g: &self.g,
+            p: &self.p,
+            c: &self.c,
+            inputs,
+            eval: &mut self.eval,
+        };
         let mut t = state.t;
-        let result = match &mut this.ig {
-            Integrator::Dopri5(ig) => run_explicit(ig, g, p, c, eval, inp, &mut t, state, t_end),
+        let result = match &mut self.ig {
+            Integrator::Dopri5(ig) => run_explicit(ig, &mut model, &mut t, state, t_end),
             Integrator::MilneHamming(ig) => ig.integrate(
-                |y, dy| {
-                    eval.run(g, p, c, inp, y, Some(dy));
-                },
+                |y, dy| model.rhs(y, dy),
                 &mut t,
                 &mut state.y,
                 t_end,
@@ -418,8 +421,8 @@ impl Dynamic {
                 &mut state.fsal,
                 &mut state.memory,
             ),
-            Integrator::Rosenbrock(ig) => run_implicit(ig, g, p, c, eval, inp, &mut t, state, t_end),
-            Integrator::Automatic { explicit, implicit } => run_automatic(explicit, implicit, g, p, c, eval, inp, &mut t, state, t_end),
+            Integrator::Rosenbrock(ig) => run_implicit(ig, &mut model, &mut t, state, t_end),
+            Integrator::Automatic { explicit, implicit } => run_automatic(explicit, implicit, &mut model, &mut t, state, t_end),
         };
         state.t = t;
         result.map_err(|f| {
@@ -555,22 +558,9 @@ impl Dynamic {
 }
 
 /// One interval of Dormand–Prince on the model.
-#[allow(clippy::too_many_arguments)]
-fn run_explicit(
-    ig: &mut Dopri5,
-    g: &Geometry,
-    p: &Parameters,
-    c: &contacts::Constants,
-    eval: &mut Evaluation,
-    inputs: &Inputs,
-    t: &mut f64,
-    state: &mut DynamicState,
-    t_end: f64,
-) -> Result<(), Failure> {
+fn run_explicit(ig: &mut Dopri5, model: &mut Model, t: &mut f64, state: &mut DynamicState, t_end: f64) -> Result<(), Failure> {
     ig.integrate(
-        |_t, y, dy| {
-            eval.run(g, p, c, inputs, y, Some(dy));
-        },
+        |_t, y, dy| model.rhs(y, dy),
         t,
         &mut state.y,
         t_end,
@@ -581,21 +571,9 @@ fn run_explicit(
 }
 
 /// One interval of Rosenbrock-W on the model.
-#[allow(clippy::too_many_arguments)]
-fn run_implicit(
-    ig: &mut RosenbrockW,
-    g: &Geometry,
-    p: &Parameters,
-    c: &contacts::Constants,
-    eval: &mut Evaluation,
-    inputs: &Inputs,
-    t: &mut f64,
-    state: &mut DynamicState,
-    t_end: f64,
-) -> Result<(), Failure> {
-    let mut model = Model { g, p, c, inputs, eval };
+fn run_implicit(ig: &mut RosenbrockW, model: &mut Model, t: &mut f64, state: &mut DynamicState, t_end: f64) -> Result<(), Failure> {
     ig.integrate(
-        &mut model,
+        model,
         t,
         &mut state.y,
         t_end,
@@ -610,15 +588,10 @@ fn run_implicit(
 /// while it is the chosen method, Dormand–Prince for the rest of the interval where it runs
 /// over or fails, or for the whole interval when it is the chosen one; the choice for the next
 /// interval from the cost of this one.
-#[allow(clippy::too_many_arguments)]
 fn run_automatic(
     explicit: &mut Dopri5,
     implicit: &mut RosenbrockW,
-    g: &Geometry,
-    p: &Parameters,
-    c: &contacts::Constants,
-    eval: &mut Evaluation,
-    inputs: &Inputs,
+    model: &mut Model,
     t: &mut f64,
     state: &mut DynamicState,
     t_end: f64,
@@ -627,7 +600,7 @@ fn run_automatic(
     if state.switch.implicit {
         let (t0, rhs0) = (*t, state.counters.rhs);
         implicit.rhs_budget = state.switch.implicit_budget(t_end - *t);
-        result = run_implicit(implicit, g, p, c, eval, inputs, t, state, t_end);
+        result = run_implicit(implicit, model, t, state, t_end);
         let sw = &mut state.switch;
         if sw.rho_jacobians != state.counters.jacobians {
             sw.rho = implicit.spectral_radius();
@@ -650,7 +623,7 @@ fn run_automatic(
     }
     if !state.switch.implicit && *t < t_end && result.is_ok() {
         let (t0, rhs0) = (*t, state.counters.rhs);
-        result = run_explicit(explicit, g, p, c, eval, inputs, t, state, t_end);
+        result = run_explicit(explicit, model, t, state, t_end);
         if result.is_ok() && state.switch.after_interval((state.counters.rhs - rhs0) as f64 / (*t - t0)) {
             state.switch.switch(&mut state.step);
             rosenbrock::mark_jacobian_stale(&mut state.memory);
