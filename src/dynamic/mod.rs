@@ -354,6 +354,19 @@ impl Dynamic {
             && !self.p.start_from_rest
     }
 
+    /// The model as the integrators and the steady solver see it with `inputs`, and the
+    /// integrator, borrowed apart from it.
+    fn model<'a>(&'a mut self, inputs: &'a Inputs) -> (Model<'a>, &'a mut Integrator) {
+        let model = Model {
+            g: &self.g,
+            p: &self.p,
+            c: &self.c,
+            inputs,
+            eval: &mut self.eval,
+        };
+        (model, &mut self.ig)
+    }
+
     /// Move `state` to the steady running state for `inputs`, seen from the cage
     /// (`steady.rs`). Returns the Newton iterations and right-hand sides it took; on failure
     /// `state` is unchanged.
@@ -365,15 +378,10 @@ impl Dynamic {
         let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
         let perturbation = perturbation_scales(&self.g, &atol, &self.p);
         let active = moving_globals(&self.g, &self.p);
-        let mut model = Model {
-            g: &self.g,
-            p: &self.p,
-            c: &self.c,
-            inputs,
-            eval: &mut self.eval,
-        };
+        let mut solver = steady::SteadySolver::new(self.g.z);
+        let (mut model, _) = self.model(inputs);
         let mut y = state.y.clone();
-        let done = steady::SteadySolver::new(self.g.z).solve(&mut model, &mut y, &scale, &perturbation, &active)?;
+        let done = solver.solve(&mut model, &mut y, &scale, &perturbation, &active)?;
         state.y = y;
         state.fsal.clear();
         state.memory.clear();
@@ -402,15 +410,9 @@ impl Dynamic {
                 }
             }
         }
-        let mut model = Model {
-            g: &self.g,
-            p: &self.p,
-            c: &self.c,
-            inputs,
-            eval: &mut self.eval,
-        };
+        let (mut model, ig) = self.model(inputs);
         let mut t = state.t;
-        let result = match &mut self.ig {
+        let result = match ig {
             Integrator::Dopri5(ig) => run_explicit(ig, &mut model, &mut t, state, t_end),
             Integrator::MilneHamming(ig) => ig.integrate(
                 |y, dy| model.rhs(y, dy),
