@@ -419,6 +419,43 @@ impl Inputs {
         }
     }
 
+    /// All rates zero: as time derivatives of the inputs (`ramped`), inputs held.
+    pub fn held() -> Inputs {
+        Inputs {
+            speed: 0.0,
+            xi: 0.0,
+            zeta: 0.0,
+            fx: 0.0,
+            fy: 0.0,
+            fz: 0.0,
+            axial_displacement: 0.0,
+            cup_speed: 0.0,
+            displacement: [0.0; 3],
+            oil_temperature: 0.0,
+        }
+    }
+
+    /// The inputs `dt` after a communication point where they were `self`, changing at
+    /// `rates` (each field the time derivative of the same field, per second): the
+    /// first-order input interpolation of FMI 2.0 co-simulation (fmi2SetRealInputDerivatives).
+    /// The oil temperature is held over the step: the lubricant's viscosity and the film
+    /// heating limit are set for it once per step.
+    pub fn ramped(&self, rates: &Inputs, dt: f64) -> Inputs {
+        let at = |v: f64, r: f64| if r == 0.0 { v } else { v + r * dt };
+        Inputs {
+            speed: at(self.speed, rates.speed),
+            xi: at(self.xi, rates.xi),
+            zeta: at(self.zeta, rates.zeta),
+            fx: at(self.fx, rates.fx),
+            fy: at(self.fy, rates.fy),
+            fz: at(self.fz, rates.fz),
+            axial_displacement: at(self.axial_displacement, rates.axial_displacement),
+            cup_speed: at(self.cup_speed, rates.cup_speed),
+            displacement: std::array::from_fn(|k| at(self.displacement[k], rates.displacement[k])),
+            oil_temperature: self.oil_temperature,
+        }
+    }
+
     /// Speed of the cone relative to the cup (rad/s). Seen from the cup, a bearing with both
     /// rings turning is one with a standing cup and the cone at this speed: the rolling and
     /// sliding speeds, the traction and the friction follow it alone; only the inertial

@@ -2,9 +2,13 @@
 //! access by value reference. The FMI adapter and the standalone `simulate` command both
 //! drive this type with the same calls, so their results agree bit for bit.
 //!
-//! Semantics (co-simulation, sample and hold):
+//! Semantics (co-simulation, sample and hold, or first-order input interpolation):
 //! - `do_step(t, h)` advances the cage (and roller azimuths) over `[t, t+h]` with the inputs
-//!   held at their current values, then solves the element at `t + h`.
+//!   held at their current values, or ramped at the rates `set_real_derivative` gave for this
+//!   step (FMI 2.0 `fmi2SetRealInputDerivatives`, order 1), then solves the element at `t + h`
+//!   with the inputs it reached there. Rates apply to one step: the next holds its inputs
+//!   unless rates are set again. The oil temperature follows its rate step by step (held
+//!   within a step: the lubricant's viscosity is set once per step).
 //! - Outputs are algebraic in the inputs at fidelity 0: reading an output after an input
 //!   changed re-solves first (direct feedthrough), so `set inputs -> get outputs` is always
 //!   consistent.
@@ -69,6 +73,8 @@ enum Model {
 struct State {
     params: Parameters,
     inputs: Inputs,
+    /// Time derivatives of the inputs over the next step (`Inputs::held()`: none).
+    rates: Inputs,
     outputs: Outputs,
     time: f64,
     cage_angle: f64,
@@ -108,7 +114,7 @@ fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: 
 }
 
 /// Magic and version of the serialized state format.
-const STATE_MAGIC: &[u8; 8] = b"TRBSTAT3";
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT4";
 
 impl Simulation {
     /// A new element for `bearing`, parameters and inputs at the bearing's defaults.
@@ -126,6 +132,7 @@ impl Simulation {
             state: State {
                 params,
                 inputs,
+                rates: Inputs::held(),
                 outputs,
                 time: 0.0,
                 cage_angle,
@@ -178,11 +185,17 @@ impl Simulation {
         self.solve_if_dirty()
     }
 
-    /// Advance from `t` to `t + h` with the inputs held, then solve at `t + h`.
-    /// The caller (FMI adapter) checks that `t` matches the current time.
+    /// Advance from `t` to `t + h` with the inputs held, or ramped at the rates set for this
+    /// step, then solve at `t + h`. The caller (FMI adapter) checks that `t` matches the
+    /// current time.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.failure = None;
         self.state.inputs.validate(&self.bearing, &self.state.params)?;
+        let ramped = self.state.rates != Inputs::held();
+        let end_inputs = self.end_of_step_inputs(h);
+        if ramped {
+            end_inputs.validate(&self.bearing, &self.state.params)?;
+        }
         self.ensure_model()?;
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
             self.solve_if_dirty()?;
@@ -190,17 +203,37 @@ impl Simulation {
         let st = &mut self.state;
         match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs: m, .. } => {
-                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&st.inputs) * h);
+                // the cage speed is linear in the ring speeds: its mean over the step is that
+                // at the step's middle
+                let middle = st.inputs.ramped(&st.rates, 0.5 * h);
+                st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&middle) * h);
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
-                dynamic.advance(ds, &st.inputs, t + h)?;
+                dynamic.advance_ramped(ds, &st.inputs, ramped.then_some(&st.rates), t + h)?;
                 st.cage_angle = wrap_angle(dynamic.cage_angle(ds));
             }
         }
         st.time = t + h;
+        st.inputs = end_inputs;
+        st.rates = Inputs::held();
         st.dirty = true;
         self.solve_if_dirty()
+    }
+
+    /// The inputs at the end of a step of length `h` from now.
+    fn end_of_step_inputs(&self, h: f64) -> Inputs {
+        let (inputs, rates) = (&self.state.inputs, &self.state.rates);
+        let mut end = inputs.ramped(rates, h);
+        if rates.oil_temperature != 0.0 {
+            end.oil_temperature = inputs.oil_temperature + rates.oil_temperature * h;
+        }
+        end
+    }
+
+    /// Time derivatives of the inputs set for the next step.
+    pub fn input_rates(&self) -> &Inputs {
+        &self.state.rates
     }
 
     /// Outputs now, solving first if inputs changed.
@@ -508,19 +541,7 @@ impl Simulation {
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
             var::ROLLER_D_D => &mut p.roller_dd[j],
-            var::SPEED => &mut i.speed,
-            var::XI => &mut i.xi,
-            var::ZETA => &mut i.zeta,
-            var::FX => &mut i.fx,
-            var::FY => &mut i.fy,
-            var::FZ => &mut i.fz,
-            var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
-            var::CUP_SPEED => &mut i.cup_speed,
-            var::DISPLACEMENT_X => &mut i.displacement[0],
-            var::DISPLACEMENT_Y => &mut i.displacement[1],
-            var::DISPLACEMENT_Z => &mut i.displacement[2],
-            var::OIL_TEMPERATURE => &mut i.oil_temperature,
-            _ => return Err(AccessError::UnknownReference(vr)),
+            _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };
         if slot.to_bits() != value.to_bits() {
             *slot = value;
@@ -536,6 +557,38 @@ impl Simulation {
             }
         }
         Ok(())
+    }
+
+    /// Set the first time derivative of the Real input `vr` for the next step (FMI 2.0
+    /// `fmi2SetRealInputDerivatives` with order 1): the input ramps from its value at the
+    /// step's start at `rate` per second over that step. Non-finite rates are refused here.
+    pub fn set_real_derivative(&mut self, vr: u32, rate: f64) -> Result<(), AccessError> {
+        self.set_real_derivative_check(vr)?;
+        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        if !rate.is_finite() {
+            return Err(AccessError::BadValue {
+                vr,
+                message: format!("the derivative of {} must be finite, got {rate}", row.name_for(j + 1)),
+            });
+        }
+        let slot = input_slot(&mut self.state.rates, row.vr).ok_or(AccessError::UnknownReference(vr))?;
+        *slot = rate;
+        Ok(())
+    }
+
+    /// Whether `vr` is a Real input, whose time derivatives may be set.
+    pub fn set_real_derivative_check(&self, vr: u32) -> Result<(), AccessError> {
+        match var::lookup(vr, self.n_rollers()) {
+            None => Err(AccessError::UnknownReference(vr)),
+            Some((row, j)) if row.ty != var::VarType::Real || row.causality != Causality::Input => Err(AccessError::BadValue {
+                vr,
+                message: format!(
+                    "{} (value reference {vr}) is not a Real input: only Real inputs take time derivatives",
+                    row.name_for(j + 1)
+                ),
+            }),
+            Some(_) => Ok(()),
+        }
     }
 
     /// Integer value of `vr`; outputs are re-solved first if inputs changed.
@@ -717,6 +770,26 @@ impl Simulation {
         self.stiffness_stale = true;
         Ok(())
     }
+}
+
+/// The field of `inputs` (values or rates) that the input `vr` sets.
+fn input_slot(inputs: &mut Inputs, vr: u32) -> Option<&mut f64> {
+    let i = inputs;
+    Some(match vr {
+        var::SPEED => &mut i.speed,
+        var::XI => &mut i.xi,
+        var::ZETA => &mut i.zeta,
+        var::FX => &mut i.fx,
+        var::FY => &mut i.fy,
+        var::FZ => &mut i.fz,
+        var::AXIAL_DISPLACEMENT => &mut i.axial_displacement,
+        var::CUP_SPEED => &mut i.cup_speed,
+        var::DISPLACEMENT_X => &mut i.displacement[0],
+        var::DISPLACEMENT_Y => &mut i.displacement[1],
+        var::DISPLACEMENT_Z => &mut i.displacement[2],
+        var::OIL_TEMPERATURE => &mut i.oil_temperature,
+        _ => return None,
+    })
 }
 
 /// bincode with a size limit, so a hostile byte string cannot make us allocate without bound.

@@ -592,11 +592,35 @@ fn illegal_call_sequences_return_error_and_say_why() {
         FMI2_ERROR
     );
     fmu.log.assert_logged("providesDirectionalDerivative");
-    assert_eq!(
-        unsafe { fmi2SetRealInputDerivatives(fmu.c, ptr::null(), 0, ptr::null(), ptr::null()) },
-        FMI2_ERROR
-    );
-    fmu.log.assert_logged("canInterpolateInputs");
+    // Input derivatives (canInterpolateInputs): order 1 of Real inputs ramps them over the
+    // next step; higher orders are not used (a warning); order 0, parameters, outputs, NaN
+    // and NULL arrays are refused with the reason.
+    let set_derivative = |vr: u32, order: i32, value: f64| unsafe { fmi2SetRealInputDerivatives(fmu.c, &vr, 1, &order, &value) };
+    assert_eq!(set_derivative(var::FY, 2, 1.0), FMI2_WARNING);
+    fmu.log.assert_logged("not used: the inputs are interpolated linearly");
+    assert_eq!(set_derivative(var::FY, 0, 1.0), FMI2_ERROR);
+    fmu.log.assert_logged("orders start at 1");
+    assert_eq!(set_derivative(var::TOLERANCE, 1, 1.0), FMI2_ERROR);
+    fmu.log.assert_logged("only Real inputs take time derivatives");
+    assert_eq!(set_derivative(var::FY, 1, f64::NAN), FMI2_ERROR);
+    fmu.log.assert_logged("must be finite");
+    for (vr, order, value) in [(true, false, false), (false, true, false), (false, false, true)] {
+        let status = unsafe {
+            fmi2SetRealInputDerivatives(
+                fmu.c,
+                if vr { ptr::null() } else { &var::FY },
+                1,
+                if order { ptr::null() } else { &1 },
+                if value { ptr::null() } else { &1.0 },
+            )
+        };
+        assert_eq!(status, FMI2_ERROR);
+        fmu.log.assert_logged("must not be NULL");
+    }
+    assert_eq!(set_derivative(var::FY, 1, 1e6), FMI2_OK);
+    assert_eq!(fmu.step(1e-3, 1e-3), FMI2_OK);
+    let (status, fy) = fmu.get_reals(&[var::FY]);
+    assert_eq!((status, fy[0]), (FMI2_OK, 3000.0), "Fy ramped from 2 kN at 1 MN/s over 1 ms");
     assert_eq!(
         unsafe { fmi2GetRealOutputDerivatives(fmu.c, ptr::null(), 0, ptr::null(), ptr::null_mut()) },
         FMI2_ERROR
@@ -615,10 +639,10 @@ fn illegal_call_sequences_return_error_and_say_why() {
     let mut s: Fmi2String = ptr::null();
     assert_eq!(unsafe { fmi2GetStringStatus(fmu.c, FMI2_PENDING_STATUS, &mut s) }, FMI2_DISCARD);
     assert_eq!(unsafe { fmi2GetStatus(fmu.c, 99, &mut status) }, FMI2_ERROR);
-    assert_eq!(fmu.time(), 1e-3);
+    assert_eq!(fmu.time(), 2e-3);
     // After termination: no more steps, but getters work.
     assert_eq!(unsafe { fmi2Terminate(fmu.c) }, FMI2_OK);
-    assert_eq!(fmu.step(1e-3, 1e-3), FMI2_ERROR);
+    assert_eq!(fmu.step(2e-3, 1e-3), FMI2_ERROR);
     fmu.log.assert_logged("fmi2DoStep called in state Terminated");
     assert_eq!(fmu.set_real(var::FY, 0.0), FMI2_ERROR);
     assert_eq!(fmu.get_reals(&out).0, FMI2_OK);

@@ -15,6 +15,7 @@
 //!   "start_time": 0.0,
 //!   "stop_time": 0.2,
 //!   "step": 0.001,
+//!   "interpolate_inputs": false,
 //!   "outputs": ["frictionTorque", "cone.x"]
 //! }
 //! ```
@@ -30,6 +31,8 @@
 //!   their start values (the bearing's operating point).
 //! - `start_time` (optional, default 0), `stop_time` (> start_time), `step` (> 0): the
 //!   communication grid, see below.
+//! - `interpolate_inputs` (optional, default false): ramp the inputs linearly over each
+//!   step instead of holding them (FMI 2.0 input interpolation, see below).
 //! - `outputs` (optional, default all): FMU output names to write.
 //!
 //! Unknown keys or variable names, wrong types, non-increasing tables or a step <= 0 are
@@ -43,10 +46,14 @@
 //!    row 0 = (t_0, u(t_0), outputs).
 //! 2. for k in 0..N: `do_step(t_k, t_{k+1} - t_k)` with the inputs held at u(t_k); set the
 //!    inputs to u(t_{k+1}); read the outputs (re-solved for the new inputs) -> row k+1.
+//!    With `interpolate_inputs`, each input's rate (u(t_{k+1}) - u(t_k)) / (t_{k+1} - t_k) is
+//!    set before the step (`Simulation::set_real_derivative`), so the inputs follow the table
+//!    between communication points as well.
 //!
 //! An FMI master doing the same calls (set parameters, set inputs, exit initialization mode,
-//! get outputs; then per row `fmi2DoStep(t_k, t_{k+1} - t_k)`, set inputs, get outputs) with
-//! the time and input columns of the CSV reproduces every output exactly.
+//! get outputs; then per row [fmi2SetRealInputDerivatives of order 1 with those rates,]
+//! `fmi2DoStep(t_k, t_{k+1} - t_k)`, set inputs, get outputs) with the time and input columns
+//! of the CSV reproduces every output exactly.
 
 use super::package::{load_bearing, LoadedBearing};
 use super::CliError;
@@ -75,6 +82,8 @@ struct ScenarioFile {
     start_time: f64,
     stop_time: f64,
     step: f64,
+    #[serde(default)]
+    interpolate_inputs: bool,
     #[serde(default)]
     outputs: Option<Vec<String>>,
 }
@@ -152,6 +161,8 @@ pub struct Scenario {
     pub start_time: f64,
     pub stop_time: f64,
     pub step: f64,
+    /// Ramp the inputs over each step along the table instead of holding them.
+    pub interpolate_inputs: bool,
     /// Number of communication steps N.
     pub n_steps: usize,
 }
@@ -312,6 +323,7 @@ impl Scenario {
             start_time: file.start_time,
             stop_time: file.stop_time,
             step: file.step,
+            interpolate_inputs: file.interpolate_inputs,
             n_steps,
         })
     }

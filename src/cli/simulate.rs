@@ -5,7 +5,7 @@
 //! value is printed with Rust's `{:?}` for f64 (shortest text that parses back to the same
 //! bits), integers as integers, so a replay through the FMU can be compared exactly.
 
-use super::scenario::{Scenario, Value};
+use super::scenario::{Scenario, Signal, Value};
 use super::CliError;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -183,10 +183,18 @@ fn run_prepared<W: Write>(
         // 2. Steps.
         for k in 0..scenario.n_steps {
             let (t, t_next) = (scenario.time(k), scenario.time(k + 1));
+            if scenario.interpolate_inputs {
+                set_input_rates(&mut sim, scenario, &u, t, t_next)?;
+            }
             sim.do_step(t, t_next - t).map_err(|e| {
+                let inputs = if scenario.interpolate_inputs {
+                    "inputs ramped"
+                } else {
+                    "inputs held"
+                };
                 model_error(
                     e,
-                    Some(format!("at t = {t:?}: the step to t = {t_next:?} (inputs held at u({t:?})) failed")),
+                    Some(format!("at t = {t:?}: the step to t = {t_next:?} ({inputs} from u({t:?})) failed")),
                 )
             })?;
             for (ui, (_, signal)) in u.iter_mut().zip(&scenario.inputs) {
@@ -222,6 +230,19 @@ pub fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Resul
     for ((var, _), value) in scenario.inputs.iter().zip(u) {
         sim.set_real(var.vr, *value)
             .map_err(|e| access(&format!("inputs.{}", var.name), e))?;
+    }
+    Ok(())
+}
+
+/// Set each table input's rate over the step from `t` (inputs `u`) to `t_next`: the secant of
+/// its table, so the ramp ends on the table's value at `t_next`.
+fn set_input_rates(sim: &mut Simulation, scenario: &Scenario, u: &[f64], t: f64, t_next: f64) -> Result<(), CliError> {
+    for ((var, signal), value) in scenario.inputs.iter().zip(u) {
+        if let Signal::Table { .. } = signal {
+            let rate = (signal.at(t_next) - value) / (t_next - t);
+            sim.set_real_derivative(var.vr, rate)
+                .map_err(|e| access(&format!("inputs.{}", var.name), e))?;
+        }
     }
     Ok(())
 }

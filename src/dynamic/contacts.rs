@@ -1389,7 +1389,9 @@ pub(crate) fn evaluate(
     let axis_c: V3 = rot.column(0).into_owned();
     let held = prescribed_cone(c, inputs);
     let origin = V3::from_fn(|k, _| held[k].unwrap_or(y[CONE + k]));
-    let cone_vel = V3::from_fn(|k, _| if c.prescribed[k] { 0.0 } else { y[CONE + 3 + k] });
+    // a prescribed translation's velocity is its input's rate, held in the state over the
+    // interval (`Dynamic::advance_ramped`; zero for held inputs)
+    let cone_vel = V3::from_fn(|k, _| y[CONE + 3 + k]);
     // in the cone's frame: its own velocity, the bearing axis, the axis term of the orbit
     let cone_vel_l = rot_t * cone_vel;
     let x_l = rot_t * V3::x();

@@ -43,7 +43,8 @@ pub struct BlockJacobian {
 /// What the finite differences need from the model: the right-hand side and, for the state
 /// it was last evaluated at, each roller's share of the global equations (NG values per roller).
 pub trait BlockSystem {
-    fn rhs(&mut self, y: &[f64], dy: &mut [f64]);
+    /// The derivative at time `t` (the inputs may ramp over the interval) and state `y`.
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
     fn shares(&self, out: &mut [f64]);
 }
 
@@ -98,7 +99,7 @@ impl BlockJacobian {
         self.g.copy_from_slice(&d[..NG * NG]);
     }
 
-    /// Finite-difference Jacobian at `y` with `f0` = f(y) (recomputed here, with the shares),
+    /// Finite-difference Jacobian at (`t`, `y`) with `f0` = f(t, y) (recomputed here, with the shares),
     /// perturbation of component i: sqrt(eps) max(|y_i|, scale_i). `work` holds 3 n values,
     /// `shares` 2 z NG. `global_active[k]` = false skips global columns that nothing reads.
     /// Returns the number of right-hand sides evaluated.
@@ -106,6 +107,7 @@ impl BlockJacobian {
     pub fn compute(
         &mut self,
         sys: &mut impl BlockSystem,
+        t: f64,
         y: &[f64],
         scale: &[f64],
         global_active: &[bool; NG],
@@ -120,7 +122,7 @@ impl BlockJacobian {
         let (s0, sp) = shares.split_at_mut(z * NG);
         let sp = &mut sp[..z * NG];
         let mut count = 0;
-        sys.rhs(y, f0);
+        sys.rhs(t, y, f0);
         sys.shares(s0);
         count += 1;
         let eps = f64::EPSILON.sqrt();
@@ -132,7 +134,7 @@ impl BlockJacobian {
                 let k = NG + M * j + i;
                 yp[k] = y[k] + step(k);
             }
-            sys.rhs(yp, fp);
+            sys.rhs(t, yp, fp);
             sys.shares(sp);
             count += 1;
             for j in 0..z {
@@ -163,7 +165,7 @@ impl BlockJacobian {
             yp.copy_from_slice(y);
             yp[gc] = y[gc] + step(gc);
             let inv = 1.0 / (yp[gc] - y[gc]);
-            sys.rhs(yp, fp);
+            sys.rhs(t, yp, fp);
             count += 1;
             for row in 0..NG {
                 self.g[row * NG + gc] = (fp[row] - f0[row]) * inv;

@@ -67,10 +67,10 @@ impl MilneHamming {
         }
     }
 
-    /// Integrate from `t` to `t_end` with `f(y, dy)`; `fsal` = f(t, y) or empty (restart),
+    /// Integrate from `t` to `t_end` with `f(t, y, dy)`; `fsal` = f(t, y) or empty (restart),
     /// `memory` the history (any other length restarts).
     #[allow(clippy::too_many_arguments)]
-    pub fn integrate<F: FnMut(&[f64], &mut [f64])>(
+    pub fn integrate<F: FnMut(f64, &[f64], &mut [f64])>(
         &mut self,
         mut f: F,
         t: &mut f64,
@@ -96,17 +96,18 @@ impl MilneHamming {
             memory[0] = h;
             fsal.clear();
             fsal.resize(n, 0.0);
-            f(y, fsal);
+            f(*t, y, fsal);
             counters.rhs += 1;
         }
         let t0 = *t;
         for step in 0..steps as u64 {
             let have = memory[1] as usize;
+            let ts = t0 + step as f64 * h;
             let estimate = if have < 3 {
-                self.gill(&mut f, y, h, fsal, memory, counters);
+                self.gill(&mut f, ts, y, h, fsal, memory, counters);
                 0.0
             } else {
-                self.milne_hamming(&mut f, y, h, fsal, memory, counters)
+                self.milne_hamming(&mut f, ts, y, h, fsal, memory, counters)
             };
             counters.steps += 1;
             *t = if step + 1 == steps as u64 {
@@ -136,9 +137,10 @@ impl MilneHamming {
         memory[at(F1)..at(F1) + n].copy_from_slice(f);
     }
 
-    fn gill<F: FnMut(&[f64], &mut [f64])>(
+    fn gill<F: FnMut(f64, &[f64], &mut [f64])>(
         &mut self,
         f: &mut F,
+        t: f64,
         y: &mut [f64],
         h: f64,
         fsal: &mut [f64],
@@ -152,26 +154,27 @@ impl MilneHamming {
         for i in 0..self.n {
             ys[i] = y[i] + 0.5 * h * k1[i];
         }
-        f(ys, k2);
+        f(t + 0.5 * h, ys, k2);
         for i in 0..self.n {
             ys[i] = y[i] + h * ((SQ - 0.5) * k1[i] + (1.0 - SQ) * k2[i]);
         }
-        f(ys, k3);
+        f(t + 0.5 * h, ys, k3);
         for i in 0..self.n {
             ys[i] = y[i] + h * (-SQ * k2[i] + (1.0 + SQ) * k3[i]);
         }
-        f(ys, k4);
+        f(t + h, ys, k4);
         for i in 0..self.n {
             y[i] += h / 6.0 * (k1[i] + 2.0 * (1.0 - SQ) * k2[i] + 2.0 * (1.0 + SQ) * k3[i] + k4[i]);
         }
-        f(y, fsal);
+        f(t + h, y, fsal);
         counters.rhs += 4;
         memory[1] += 1.0;
     }
 
-    fn milne_hamming<F: FnMut(&[f64], &mut [f64])>(
+    fn milne_hamming<F: FnMut(f64, &[f64], &mut [f64])>(
         &mut self,
         f: &mut F,
+        t: f64,
         y: &mut [f64],
         h: f64,
         fsal: &mut [f64],
@@ -195,7 +198,7 @@ impl MilneHamming {
             }
         }
         let [fm, c, _] = &mut self.k;
-        f(m, fm);
+        f(t + h, m, fm);
         // corrector and final modifier; the history moves by one
         {
             let (fn0, y2, f1) = (&*fsal, &memory[at(Y2)..at(Y2) + n], &memory[at(F1)..at(F1) + n]);
@@ -213,7 +216,7 @@ impl MilneHamming {
             let e = 9.0 / 121.0 * (p[i] - c[i]) / scale;
             sum += e * e;
         }
-        f(y, fsal);
+        f(t + h, y, fsal);
         counters.rhs += 2;
         // the RMS norm; NaN (a diverged corrector) counts as unstable
         let norm = (sum / n as f64).sqrt();
@@ -239,7 +242,7 @@ mod tests {
         let (mut fsal, mut mem) = (Vec::new(), Vec::new());
         for k in 1..=20 {
             ig.integrate(
-                |y: &[f64], d: &mut [f64]| {
+                |_t: f64, y: &[f64], d: &mut [f64]| {
                     d[0] = y[1];
                     d[1] = -w * w * y[0];
                 },
@@ -279,7 +282,7 @@ mod tests {
             let (mut fsal, mut mem) = (Vec::new(), Vec::new());
             let mut c = Counters::default();
             ig.integrate(
-                |y: &[f64], d: &mut [f64]| d[0] = -lambda * y[0],
+                |_t: f64, y: &[f64], d: &mut [f64]| d[0] = -lambda * y[0],
                 &mut t,
                 &mut y,
                 0.05,

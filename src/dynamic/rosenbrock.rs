@@ -9,7 +9,9 @@
 //! L-stable stages instead of limiting the step as they do for the explicit method; the step
 //! follows the accuracy of the slow motion. Stages in the transformed variables of Hairer &
 //! Wanner (Solving ODEs II, IV.7): (1/(h gamma) I - W) u_i = f(y + sum a_ij u_j) + sum (c_ij/h) u_j,
-//! y1 = y + sum m_i u_i; the right-hand side is autonomous (inputs held over the interval).
+//! y1 = y + sum m_i u_i. Stage i evaluates f at t + alpha_i h: the method applied to the system
+//! augmented by t' = 1 with a W blind to df/dt, so inputs that ramp over the interval keep the
+//! W-method's order (held inputs: the right-hand side is autonomous and nothing changes).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
@@ -87,6 +89,10 @@ pub struct RosenbrockW {
     c: [[f64; S]; S],
     m: [f64; S],
     e: [f64; S],
+    /// Where in the step each stage evaluates the right-hand side (alpha_i = sum_j alpha_ij):
+    /// the W-method on the system augmented by the time, t' = 1, with a W blind to df/dt
+    /// (legal: W is arbitrary), so the inputs may ramp over the interval.
+    stage_time: [f64; S],
 }
 
 /// Make the Jacobian in the integrator memory `memory` (empty: none yet) due at the next step:
@@ -172,13 +178,14 @@ impl RosenbrockW {
             c,
             m,
             e,
+            stage_time: std::array::from_fn(|i| ALPHA[i].iter().sum()),
         }
     }
 
-    fn refresh_jacobian(&mut self, sys: &mut impl BlockSystem, y: &[f64], counters: &mut Counters, memory: &mut [f64]) {
+    fn refresh_jacobian(&mut self, sys: &mut impl BlockSystem, t: f64, y: &[f64], counters: &mut Counters, memory: &mut [f64]) {
         counters.rhs += self
             .jac
-            .compute(sys, y, &self.scale, &self.global_active, &mut self.work, &mut self.shares);
+            .compute(sys, t, y, &self.scale, &self.global_active, &mut self.work, &mut self.shares);
         counters.jacobians += 1;
         memory[0] = 0.0;
         memory[1] = self.orbit.map_or(0.0, |o| y[o.state]);
@@ -277,13 +284,13 @@ impl RosenbrockW {
         if fsal.len() != n {
             fsal.clear();
             fsal.resize(n, 0.0);
-            sys.rhs(y, fsal);
+            sys.rhs(*t, y, fsal);
             counters.rhs += 1;
         }
         if memory.len() != memory_len(z) {
             memory.clear();
             memory.resize(memory_len(z), 0.0);
-            self.refresh_jacobian(sys, y, counters, memory);
+            self.refresh_jacobian(sys, *t, y, counters, memory);
         } else {
             self.jac.read(&memory[HEADER..]);
         }
@@ -324,7 +331,7 @@ impl RosenbrockW {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
             }
             if memory[0] as u64 >= self.max_age || (self.turned_too_far(y, memory) && !self.follow_by_pitches(y, memory)) {
-                self.refresh_jacobian(sys, y, counters, memory);
+                self.refresh_jacobian(sys, *t, y, counters, memory);
             }
             let alpha = 1.0 / (hs * GAMMA);
             if !(self.lu.alpha.is_finite() && (alpha / self.lu.alpha - 1.0).abs() <= self.refactor_ratio) {
@@ -349,7 +356,7 @@ impl RosenbrockW {
                             }
                         }
                     }
-                    sys.rhs(ys, &mut self.f);
+                    sys.rhs(*t + self.stage_time[i] * hs, ys, &mut self.f);
                     counters.rhs += 1;
                 }
                 let (done, rest) = self.u.split_at_mut(i);
@@ -393,7 +400,7 @@ impl RosenbrockW {
                 steps_here += 1;
                 memory[0] += 1.0;
                 rejected_in_row = 0;
-                sys.rhs(y, fsal);
+                sys.rhs(*t, y, fsal);
                 counters.rhs += 1;
                 // PI controller for an order-3 pair (embedded order 2, local error ~ h^3),
                 // acting on the step it proposed: a step cut shorter to divide the interval
@@ -422,7 +429,7 @@ impl RosenbrockW {
                 };
                 *h = hs * fac;
                 if memory[0] > 0.0 || rejected_in_row > 2 {
-                    self.refresh_jacobian(sys, y, counters, memory);
+                    self.refresh_jacobian(sys, *t, y, counters, memory);
                 }
                 if *h < h_floor(*t) {
                     return Err(Failure::below_floor(finite, *t, *h));
@@ -446,7 +453,7 @@ mod tests {
     }
 
     impl BlockSystem for Stiff {
-        fn rhs(&mut self, y: &[f64], dy: &mut [f64]) {
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
             let w = 2e5;
             for k in 0..NG {
                 dy[k] = 0.0;

@@ -84,7 +84,9 @@ impl SteadySolver {
         let cage_angle = y[CAGE + 2];
         let mut rhs = 0u64;
         for it in 0..MAX_ITERATIONS {
-            rhs += self.jac.compute(sys, y, perturbation, active, &mut self.work, &mut self.shares);
+            rhs += self
+                .jac
+                .compute(sys, 0.0, y, perturbation, active, &mut self.work, &mut self.shares);
             self.steady_rows(active);
             if !self.lu.factor(&self.jac, 0.0) {
                 return Err(NoSteadyState::Singular { iterations: it });
@@ -152,7 +154,7 @@ impl SteadySolver {
 /// The steady equations at `y`: f(y), with each roller's azimuth rate taken relative to the
 /// cage's, the cage angle's departure from `cage_angle`, and zero for prescribed states.
 fn residual(sys: &mut impl BlockSystem, y: &[f64], active: &[bool; NG], cage_angle: f64, z: usize, out: &mut [f64]) {
-    sys.rhs(y, out);
+    sys.rhs(0.0, y, out);
     for (k, a) in active.iter().enumerate() {
         if !a {
             out[k] = 0.0;
@@ -194,7 +196,7 @@ mod tests {
     }
 
     impl BlockSystem for Braked {
-        fn rhs(&mut self, y: &[f64], dy: &mut [f64]) {
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
             dy.fill(0.0);
             dy[CAGE + 2] = y[CAGE + 5];
             for j in 0..self.z {

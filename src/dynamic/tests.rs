@@ -747,15 +747,16 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
         p: &d.p,
         c: &d.c,
         inputs: &i,
+        ramp: None,
         eval: &mut d.eval,
     };
     let mut work = vec![0.0; 3 * n];
     let mut shares = vec![0.0; 2 * z * NG];
-    let count = jac.compute(&mut model, &st.y, &scale, &[true; NG], &mut work, &mut shares);
+    let count = jac.compute(&mut model, 0.0, &st.y, &scale, &[true; NG], &mut work, &mut shares);
     assert_eq!(count, 1 + M as u64 + NG as u64);
     // full Jacobian column by column, same one-sided differences
     let mut f0 = vec![0.0; n];
-    model.rhs(&st.y, &mut f0);
+    model.rhs(0.0, &st.y, &mut f0);
     let mut y = st.y.clone();
     let mut f1 = vec![0.0; n];
     let mut worst: f64 = 0.0;
@@ -763,7 +764,7 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
         let e = f64::EPSILON.sqrt() * st.y[col].abs().max(scale[col]);
         y[col] = st.y[col] + e;
         let e = y[col] - st.y[col];
-        model.rhs(&y, &mut f1);
+        model.rhs(0.0, &y, &mut f1);
         y[col] = st.y[col];
         for row in 0..n {
             let full = (f1[row] - f0[row]) / e;

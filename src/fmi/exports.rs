@@ -371,12 +371,16 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: Fmi2Component,
-    _vr: *const Fmi2ValueReference,
-    _nvr: usize,
-    _order: *const Fmi2Integer,
-    _value: *const Fmi2Real,
+    vr: *const Fmi2ValueReference,
+    nvr: usize,
+    order: *const Fmi2Integer,
+    value: *const Fmi2Real,
 ) -> Fmi2Status {
-    unsafe { with_instance(c, "fmi2SetRealInputDerivatives", |i| i.set_real_input_derivatives()) }
+    unsafe {
+        with_instance(c, "fmi2SetRealInputDerivatives", |i| {
+            i.set_real_input_derivatives(slice(vr, nvr), slice(order, nvr), slice(value, nvr))
+        })
+    }
 }
 
 #[no_mangle]

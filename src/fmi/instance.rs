@@ -617,12 +617,45 @@ impl Instance {
         FMI2_ERROR
     }
 
-    pub fn set_real_input_derivatives(&mut self) -> Fmi2Status {
+    /// First derivatives ramp the inputs over the next step (`Simulation::set_real_derivative`);
+    /// higher orders are accepted and not used (the interpolation is linear): a warning.
+    pub fn set_real_input_derivatives(&mut self, vrs: Option<&[u32]>, orders: Option<&[i32]>, values: Option<&[f64]>) -> Fmi2Status {
         const F: &str = "fmi2SetRealInputDerivatives";
-        if self.allowed(mask::SET_REAL_INPUT_DERIVATIVES, F) {
-            self.log.error(format_args!("{F}: not supported: canInterpolateInputs = false"));
+        if !self.allowed(mask::SET_REAL_INPUT_DERIVATIVES, F) {
+            return FMI2_ERROR;
         }
-        FMI2_ERROR
+        let (Some(vrs), Some(orders), Some(values)) = (vrs, orders, values) else {
+            let missing = if vrs.is_none() {
+                "vr[]"
+            } else if orders.is_none() {
+                "order[]"
+            } else {
+                "value[]"
+            };
+            return self.null_argument(F, missing);
+        };
+        let mut status = FMI2_OK;
+        for ((&vr, &order), &value) in vrs.iter().zip(orders).zip(values) {
+            if order < 1 {
+                self.log
+                    .error(format_args!("{F}: order {order} for value reference {vr}: orders start at 1"));
+                return FMI2_ERROR;
+            }
+            let result = if order == 1 {
+                self.sim.set_real_derivative(vr, value)
+            } else {
+                self.sim.set_real_derivative_check(vr).map(|()| {
+                    self.log.warning(format_args!(
+                        "{F}: the derivative of order {order} of value reference {vr} is not used: the inputs are interpolated linearly"
+                    ));
+                    status = FMI2_WARNING;
+                })
+            };
+            if let Err(e) = result {
+                return self.access_error(F, &e, "Real input");
+            }
+        }
+        status
     }
 
     pub fn get_real_output_derivatives(&mut self) -> Fmi2Status {

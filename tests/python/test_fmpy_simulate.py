@@ -81,3 +81,38 @@ def test_every_preset_runs_at_its_operating_point(package_preset, models, name):
     else:
         # A cylindrical roller bearing carries no axial load in this model.
         assert np.all(res["reaction.Fx"] == 0.0)
+
+
+def test_a_speed_ramp_with_input_derivatives_turns_the_cage_by_its_integral(fmu_path, model):
+    """fmpy's `simulate_fmu(set_input_derivatives=True)` (canInterpolateInputs): the speed
+    ramps within each communication step instead of being held, so the quasi-static cage,
+    which follows the speed linearly, turns by exactly the integral of its speed, 0.5 a t^2
+    from rest at a constant acceleration; held, it lags by half a step of speed per step.
+
+    fmpy 0.3.32 sizes its buffer of input derivatives for exactly 9 continuous inputs
+    (`(value_type * 9)()` in `fmpy.simulation.Input`), so the signal carries 9: the speed
+    ramp and 8 more at their start values."""
+    accel = 1000.0  # rad/s^2
+    stop, step = 0.1, 0.01
+    held_inputs = ["Fx", "Fy", "Fz", "xi", "zeta", "cupSpeed", "axialDisplacement", "oilTemperature"]
+    dtype = [("time", np.float64), ("speed", np.float64)] + [(n, np.float64) for n in held_inputs]
+    starts = tuple(model.start(n) for n in held_inputs)
+    signal = np.array([(-1.0, -accel) + starts, (1.0, accel) + starts], dtype=dtype)
+    results = {}
+    for derivatives in (True, False):
+        res = simulate_fmu(
+            str(fmu_path), stop_time=stop, output_interval=step, input=signal, set_input_derivatives=derivatives,
+            output=["speed", "cage.speed", "roller[1].azimuth"],
+        )
+        results[derivatives] = res
+    ramped, held = results[True], results[False]
+    # fmpy records a step's outputs before it sets the next inputs: ramped, the FMU's speed
+    # has reached the signal's at the step's end; held, it is still the step's start value
+    assert np.allclose(ramped["speed"], accel * ramped["time"], rtol=1e-12, atol=1e-9)
+    assert np.allclose(held["speed"][1:], accel * (held["time"][1:] - step), rtol=1e-12, atol=1e-9)
+    ratio = ramped["cage.speed"][-1] / ramped["speed"][-1]
+    turned = np.unwrap(ramped["roller[1].azimuth"]) - ramped["roller[1].azimuth"][0]
+    assert np.allclose(turned, 0.5 * ratio * accel * ramped["time"] ** 2, rtol=1e-9, atol=1e-12)
+    lag = 0.5 * ratio * accel * step * ramped["time"]
+    held_turned = np.unwrap(held["roller[1].azimuth"]) - held["roller[1].azimuth"][0]
+    assert np.allclose(turned - held_turned, lag, rtol=1e-9, atol=1e-12)

@@ -4,7 +4,9 @@ makes the calls the CSV's semantics describe (scenarios/README.md) reproduces ev
 Replay with fmpy's low-level FMU2Slave:
   instantiate; setupExperiment(t_0, t_N); set the scenario's parameters; set the inputs of
   row 0; enter/exit initialization mode; get outputs -> row 0;
-  for k = 0..N-1: doStep(t_k, t_{k+1} - t_k); set the inputs of row k+1; get outputs -> row k+1.
+  for k = 0..N-1: [with `interpolate_inputs`: setRealInputDerivatives of order 1, the secants
+  (u_{k+1} - u_k) / (t_{k+1} - t_k) of the input columns;] doStep(t_k, t_{k+1} - t_k); set the
+  inputs of row k+1; get outputs -> row k+1.
 """
 
 import copy
@@ -68,6 +70,29 @@ def _cases():
             "stop_time": 0.001,
             "step": 0.0001,
         },
+        # Inputs ramped over each step (fmi2SetRealInputDerivatives), quasi-static and dynamic.
+        "32018X-dry-interpolated": lambda: _with_tables(
+            "d19_force_preload.json", 0.3, 0.01,
+            {
+                "Fy": {"time": [0.0, 0.1, 0.3], "values": [35000.0, 35000.0, 20000.0]},
+                "speed": {"time": [0.0, 0.3], "values": [6.283185307179585, 20.0]},
+            },
+            interpolate_inputs=True,
+        ),
+        "TRB130x230-dynamic-interpolated": lambda: {
+            "description": "test: [W25] case at fidelity 1 with radial load and deflection ramped within the steps",
+            "bearing": "TRB130x230",
+            "parameters": {"fidelity": 1, "slices": 8},
+            "inputs": {
+                "speed": {"time": [0.0, 0.001], "values": [366.51914291880917, 380.0]},
+                "Fx": 30000.0,
+                "Fy": {"time": [0.0, 0.001], "values": [0.0, 6000.0]},
+                "xi": {"time": [0.0, 0.0006, 0.0007], "values": [0.0, 0.0, 7e-5]},
+            },
+            "stop_time": 0.001,
+            "step": 0.0001,
+            "interpolate_inputs": True,
+        },
         # The cylindrical lobed bearing, cage followed over a roller pitch.
         "CRB-TRILOBE-lobed": lambda: _with_tables(
             "y22_single_pressed.json", 0.00014, 2e-6,
@@ -106,6 +131,10 @@ def replay(fmu, model: Model, scenario: dict, header: list[str], rows: list[list
     fmu.exitInitializationMode()
     got = [outputs()]
     for k in range(len(rows) - 1):
+        if scenario.get("interpolate_inputs", False):
+            h = t[k + 1] - t[k]
+            rates = [(b - a) / h for a, b in zip(rows[k][1 : 1 + n_in], rows[k + 1][1 : 1 + n_in])]
+            fmu.setRealInputDerivatives(in_vrs, [1] * n_in, rates)
         fmu.doStep(currentCommunicationPoint=t[k], communicationStepSize=t[k + 1] - t[k])
         fmu.setReal(in_vrs, rows[k + 1][1 : 1 + n_in])
         got.append(outputs())
