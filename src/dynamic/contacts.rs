@@ -126,9 +126,25 @@ pub(crate) struct Constants {
     /// x86-64). Tests switch it off (with `paired_traction`) for the scalar reference.
     #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) lane_slices: bool,
+    /// Take them four at a time (AVX2, where the CPU has it; the same bits as two at a time).
+    /// Tests switch it off to compare.
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    pub(crate) four_lanes: bool,
     /// The rollers' thread pool (`threads` > 1; `None`: the caller's thread alone). Each
     /// instance has its own, so parallel instances in a co-simulation master do not share it.
     pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
+}
+
+/// Whether this CPU takes the four-lane raceway slices (`race_slices_lanes`).
+fn four_lanes_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        crate::simd_math::x4::available()
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
 }
 
 /// One raceway line: a point of its generatrix, its normal (force on the roller), the slice
@@ -279,6 +295,7 @@ impl Constants {
             ],
             displacement_causality: p.causality == LoadCausality::Displacement,
             lane_slices: cfg!(target_arch = "x86_64"),
+            four_lanes: four_lanes_available(),
             pool: (p.threads > 1)
                 .then(|| rayon::ThreadPoolBuilder::new().num_threads(p.threads as usize).build().ok())
                 .flatten()
@@ -530,7 +547,11 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64)
             let slide_roll = vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT);
             #[cfg(target_arch = "x86_64")]
             if c.paired_traction {
-                let film = tr::pair::rib_film_traction;
+                let film = if c.four_lanes {
+                    tr::pair::rib_film_traction_four
+                } else {
+                    tr::pair::rib_film_traction
+                };
                 return c.lubricant.rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, film) / vs;
             }
             c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs
@@ -741,159 +762,6 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
     sum
 }
 
-/// [`race_slices`] for a raceway without lobes (extra gap `extra` everywhere, no slope) two
-/// slices at a time (x86-64): slices k and k + 1 in the two lanes of `simd_math` through the
-/// geometry, the contact law (per lane), the traction (`slice_traction_lanes`, lanes it does
-/// not take by [`slice_traction`]) and the sums, which gather the even and the odd slices
-/// apart and add them at the end. The same formulas in the same order as [`race_slices`]:
-/// the sums agree with its to rounding.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
-    use crate::simd_math::{V3x2, F2, M2};
-    let line = race.line;
-    let (r0, r1) = (line.reference[0], line.reference[1]);
-    let (n0, n1) = (line.normal[0], line.normal[1]);
-    // the velocity fields of `race_slices`
-    let ring_c = race.ring_v0 + race.ring_omega.cross(&race.pos);
-    let pt_c = race.pt_v0 + race.pt_omega.cross(&race.pos);
-    let v_c = V3x2::splat(&(race.vel - ring_c));
-    let w_rel_s = race.w - race.ring_omega;
-    let w_rel = V3x2::splat(&w_rel_s);
-    let u_c = V3x2::splat(&((race.vel + ring_c) * 0.5 - pt_c));
-    let w_e = V3x2::splat(&((race.w + race.ring_omega) * 0.5 - race.pt_omega));
-    let (pos, a) = (V3x2::splat(&race.pos), V3x2::splat(&race.a));
-    if let Some(loads) = slice_loads.as_deref_mut() {
-        loads.fill(0.0);
-    }
-    let zero = F2::splat(0.0);
-    let (mut f, mut m, mut traction) = (V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()), V3x2::splat(&V3::zeros()));
-    let (mut q_sum, mut power) = (zero, zero);
-    let mut extrapolated = false;
-    let ns = c.s_cm.len();
-    let mut k = 0;
-    while k < ns {
-        // an odd last slice: lane 1 repeats it, masked out
-        let kb = (k + 1).min(ns - 1);
-        let two = M2::splat(true);
-        let lanes = if k + 1 < ns { two } else { F2::new(1.0, 0.0).gt(zero) };
-        let pick = |v: &[f64]| F2::new(v[k], v[kb]);
-        let rad = pick(&c.radius) + dd - pick(&c.shrink);
-        let cl = pos.add(&a.scale(pick(&c.s_cm)));
-        let rho_c = (cl.y * cl.y + cl.z * cl.z).sqrt();
-        // the cheap gap test
-        let bound = -((cl.x - r0) * n0 + (rho_c - r1) * n1) + rad + race.gap_max;
-        let mut live = lanes & !bound.lt(F2::splat(-1e-12));
-        if !live.any() {
-            k += 2;
-            continue;
-        }
-        let centre_off = rho_c.gt(zero);
-        let inv = 1.0 / rho_c;
-        let (ey, ez) = (centre_off.select(cl.y * inv, F2::splat(1.0)), centre_off.select(cl.z * inv, zero));
-        // deepest rim point: towards the raceway projected on the disc plane
-        let g = V3x2::new(F2::splat(-n0), -(ey * n1), -(ez * n1));
-        let d = g.sub(&a.scale(g.dot(&a)));
-        let dn = d.norm();
-        live = live & !dn.le(zero);
-        let d = d.scale(1.0 / dn);
-        let pl = cl.add(&d.scale(rad));
-        let rho_p = (pl.y * pl.y + pl.z * pl.z).sqrt();
-        let point_off = rho_p.gt(zero);
-        let (py, pz) = (point_off.select(pl.y / rho_p, F2::splat(1.0)), point_off.select(pl.z / rho_p, zero));
-        let delta = -((pl.x - r0) * n0 + (rho_p - r1) * n1) + extra;
-        live = live & !delta.le(zero);
-        let bits = live.bits();
-        if bits == 0 {
-            k += 2;
-            continue;
-        }
-        // the contact law per lane
-        let [da, db] = delta.lanes();
-        let (qa, dqa, xa) = if bits & 1 != 0 { line.law.load(k, da) } else { (0.0, 0.0, false) };
-        let (qb, dqb, xb) = if bits & 2 != 0 { line.law.load(kb, db) } else { (0.0, 0.0, false) };
-        extrapolated |= xa | xb;
-        let (q_el, dq) = (F2::new(qa, qb), F2::new(dqa, dqb));
-        let n = V3x2::new(F2::splat(n0), py * n1, pz * n1);
-        let lever = pl.sub(&pos);
-        let v_rel = v_c.add(&w_rel.cross(&lever));
-        let vn = v_rel.dot(&n);
-        let c_damp = c.damping_factor * dq.sqrt();
-        let q = live.select((q_el - c_damp * vn).max(zero), zero);
-        let damping_power = (q - q_el) * (-vn);
-        let v_t = v_rel.sub(&n.scale(vn));
-        let ue_vec = u_c.add(&w_e.cross(&lever));
-        let u_e = ue_vec.sub(&n.scale(ue_vec.dot(&n))).norm();
-        let vs = v_t.norm();
-        // traction: both lanes two at a time where the two-lane law takes them
-        let regular = q.gt(zero)
-            & vs.gt(zero)
-            & u_e.ge(F2::splat(1e-6))
-            & q.lt(F2::splat(f64::INFINITY))
-            & vs.lt(F2::splat(f64::INFINITY))
-            & u_e.lt(F2::splat(f64::INFINITY));
-        let (mut coef, mut couple, mut done) = (zero, zero, !live);
-        if c.paired_traction && regular.any() {
-            let (cf, cp, ok) = slice_traction_lanes(
-                c,
-                line,
-                [k, kb],
-                regular.select(q, F2::splat(1.0)),
-                regular.select(vs, F2::splat(1.0)),
-                regular.select(u_e, F2::splat(1.0)),
-            );
-            let took = regular & ok;
-            (coef, couple, done) = (took.select(cf, zero), took.select(cp, zero), done | took);
-        }
-        let done_bits = done.bits();
-        if done_bits != 3 {
-            let ([qa, qb], [va, vb], [ua, ub]) = (q.lanes(), vs.lanes(), u_e.lanes());
-            let ([mut ca, mut cb], [mut pa, mut pb]) = (coef.lanes(), couple.lanes());
-            if done_bits & 1 == 0 {
-                (ca, pa) = slice_traction(c, line, k, qa, va, ua);
-            }
-            if done_bits & 2 == 0 {
-                (cb, pb) = slice_traction(c, line, kb, qb, vb, ub);
-            }
-            (coef, couple) = (F2::new(ca, cb), F2::new(pa, pb));
-        }
-        // the sums (dead lanes add nothing)
-        let fk = n.scale(q).sub(&v_t.scale(coef)).masked(live);
-        f = f.add(&fk);
-        m = m.add(&lever.cross(&fk).masked(live));
-        q_sum = q_sum + q;
-        traction = traction.sub(&v_t.scale(coef).masked(live));
-        power = power + live.select(coef * vs * vs + damping_power.max(zero), zero);
-        let rolls = live & couple.gt(zero);
-        if rolls.any() {
-            // EHL rolling resistance (see `race_slices`)
-            let w_roll = w_rel.sub(&n.scale(w_rel.dot(&n)));
-            let norm = (w_roll.norm_squared() + pick(&line.roll_eps2)).sqrt();
-            let m_roll = w_roll.scale(-couple / norm).masked(rolls);
-            m = m.add(&m_roll);
-            power = power + rolls.select(-m_roll.dot(&w_roll), zero);
-        }
-        if let Some(loads) = slice_loads.as_deref_mut() {
-            let [qa, qb] = q.lanes();
-            if bits & 1 != 0 {
-                loads[k] = qa;
-            }
-            if bits & 2 != 0 {
-                loads[kb] = qb;
-            }
-        }
-        k += 2;
-    }
-    LineSum {
-        f: f.lane_sum(),
-        m: m.lane_sum(),
-        q: q_sum.lane_sum(),
-        traction: traction.lane_sum(),
-        power: power.lane_sum(),
-        extrapolated,
-    }
-}
-
 /// A touching slice of [`race_slices`] as its traction and the sums take it: index, normal
 /// load, raceway normal, lever from the centre of mass, tangential relative velocity and its
 /// norm, entrainment speed, damping power, extrapolated contact law.
@@ -927,7 +795,7 @@ impl Slice {
 fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
     use crate::simd_math::F2;
     let (q, vs, u_e) = (F2::new(a.q, b.q), F2::new(a.vs, b.vs), F2::new(a.u_e, b.u_e));
-    let (coef, couple, ok) = slice_traction_lanes(c, line, [a.k, b.k], q, vs, u_e);
+    let (coef, couple, ok) = lanes2::slice_traction_lanes(c, line, [a.k, b.k], q, vs, u_e);
     let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
     [
         if bits & 1 != 0 {
@@ -943,47 +811,44 @@ fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) ->
     ]
 }
 
-/// [`slice_traction`] with the thermal Eyring law in two lanes (x86-64, `simd_math`;
-/// `tribology::pair`), slices `k` with load `q`, sliding speed `vs`, entrainment speed `u_e`
-/// that [`Slice::paired`] takes: the same formulas in the same order. (coef, couple, the
-/// lanes within the two-lane kernels' range: the others want the scalar code.)
+/// The raceway slices in two lanes (SSE2, every x86-64 CPU).
+#[cfg(target_arch = "x86_64")]
+mod lanes2 {
+    use super::*;
+    use crate::simd_math::{exp, ln, V3x2 as V, F2 as F, M2 as M};
+    use crate::tribology::pair::x2 as pair;
+    include!("slice_lanes.rs");
+}
+
+/// The raceway slices in four lanes (AVX2), entered through [`race_slices_avx2`].
+#[cfg(target_arch = "x86_64")]
+mod lanes4 {
+    use super::*;
+    use crate::simd_math::x4::{exp, ln, V3x4 as V, F4 as F, M4 as M};
+    use crate::tribology::pair::x4 as pair;
+    include!("slice_lanes.rs");
+
+    /// `race_slices_lanes` in four lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU has AVX2 (`simd_math::x4::available`).
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn race_slices_avx2(c: &Constants, race: &Race, dd: f64, slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
+        race_slices_lanes(c, race, dd, slice_loads, extra)
+    }
+}
+
+/// [`race_slices`] for a raceway without lobes, in lanes: four where the CPU has AVX2
+/// (`Constants::four_lanes`), else two; the same bits either way (`slice_lanes.rs`).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn slice_traction_lanes(
-    c: &Constants,
-    line: &LineConst,
-    [ka, kb]: [usize; 2],
-    q: crate::simd_math::F2,
-    vs: crate::simd_math::F2,
-    u_e: crate::simd_math::F2,
-) -> (crate::simd_math::F2, crate::simd_math::F2, crate::simd_math::M2) {
-    use crate::simd_math::{self as sm, F2, M2};
-    let w = q * c.inv_slice_len;
-    let (ln_ue, ln_w) = (sm::ln(u_e), sm::ln(w));
-    let ln_h_iso = F2::new(line.ln_film[ka], line.ln_film[kb]) + 0.692 * ln_ue - 0.166 * ln_w;
-    let p_mean = (w * F2::new(line.k_pmean[ka], line.k_pmean[kb])).sqrt();
-    let ln_vs = sm::ln(vs);
-    let (heating, mut ok) = if c.ln_inlet_heating > f64::NEG_INFINITY {
-        tr::pair::thermal_reduction_ln(c.ln_inlet_heating + 2.0 * ln_ue, 4.0 / PI * p_mean / c.e_prime, ln_vs - ln_ue)
+fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
+    if c.four_lanes {
+        // SAFETY: `four_lanes` is set only where the CPU has AVX2 (`Constants::new`).
+        unsafe { lanes4::race_slices_avx2(c, race, dd, slice_loads, extra) }
     } else {
-        (F2::splat(1.0), M2::splat(true))
-    };
-    ok = ok & tr::pair::exp_range(ln_h_iso);
-    let (h, ln_h) = (heating * sm::exp(ln_h_iso), ln_h_iso + sm::ln(heating));
-    let boundary_slide_roll = vs / u_e.max(F2::splat(MIN_BOUNDARY_ENTRAINMENT));
-    let (mu, film_ok) = c
-        .lubricant
-        .raceway_mu_film_pair(w, p_mean, h, ln_h, u_e, vs, ln_vs, boundary_slide_roll);
-    ok = ok & film_ok;
-    let coef = mu * q / vs;
-    let couple = if c.rolling_resistance {
-        let ln_couple = F2::new(line.ln_roll[ka], line.ln_roll[kb]) + 0.648 * ln_ue + 0.246 * ln_w;
-        ok = ok & tr::pair::exp_range(ln_couple);
-        heating * sm::exp(ln_couple)
-    } else {
-        F2::splat(0.0)
-    };
-    (coef, couple, ok)
+        lanes2::race_slices_lanes(c, race, dd, slice_loads, extra)
+    }
 }
 
 /// The cone's and cage's pose and motion, the same for every roller of one evaluation.

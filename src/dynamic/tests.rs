@@ -1050,3 +1050,86 @@ fn paired_traction_agrees_with_the_scalar_law() {
         assert!(sliding_worst <= 1e-12, "{name}: traction {sliding_worst:e}");
     }
 }
+
+/// The raceway slices four at a time (AVX2) give the bits of two at a time (SSE2): the whole
+/// right-hand side and the slice loads agree bit for bit, lubricated (thermal Eyring, every
+/// branch of its lane kernels: film, asperities, the scalar fallbacks), dry, under combined
+/// load and misalignment, from rest, on 32018X, and with slice counts that leave one, two or
+/// three lanes of the last group empty. (Without AVX2 there is nothing to compare.)
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn four_lanes_give_the_two_lane_bits() {
+    use crate::model::{Fidelity, Inputs, Parameters};
+    if !crate::simd_math::x4::available() {
+        eprintln!("no AVX2 on this CPU: nothing to compare");
+        return;
+    }
+    type Setup = fn(&mut Parameters, &mut Inputs);
+    let cases: Vec<(&str, Setup)> = vec![
+        ("TRB130x230", |_, _| {}),
+        ("TRB130x230", |p, i| {
+            p.slices = 7;
+            i.fy = 10e3;
+            i.xi = 0.004_f64.to_radians();
+        }),
+        ("TRB130x230", |p, i| {
+            p.slices = 9;
+            p.start_from_rest = true;
+            i.fx = 2e3;
+            i.fy = 1e3;
+        }),
+        ("TRB130x230", |p, i| {
+            p.slices = 10;
+            p.lubrication = crate::model::Lubrication::Dry;
+            i.fy = 5e3;
+        }),
+        ("TRB130x230", |p, i| {
+            p.slices = 6;
+            p.roughness = 0.6e-6;
+            i.speed = 20.0;
+            i.fy = 20e3;
+        }),
+        ("32018X", |_, _| {}),
+        ("32008", |_, i| i.fy = 3e3),
+    ];
+    for (n, (preset, setup)) in cases.into_iter().enumerate() {
+        let b = Bearing::preset(preset).unwrap();
+        let mut p = Parameters::from_bearing(&b);
+        p.fidelity = Fidelity::Dynamic;
+        let mut i = Inputs::from_bearing(&b);
+        setup(&mut p, &mut i);
+        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        // states away from the seat too: moving rollers, sliding contacts
+        let mut states = vec![st.y.clone()];
+        if n < 3 {
+            d.advance(&mut st, &i, 2e-4).unwrap();
+            states.push(st.y.clone());
+        }
+        let mut perturbed = st.y.clone();
+        for (k, v) in perturbed.iter_mut().enumerate() {
+            *v *= 1.0 + 1e-3 * ((k % 7) as f64 - 3.0);
+        }
+        states.push(perturbed);
+        for y in &states {
+            let mut run = |four: bool| {
+                d.c.four_lanes = four;
+                let mut dy = vec![0.0; y.len()];
+                d.rhs(&i, y, &mut dy);
+                let mut bits: Vec<u64> = dy.iter().map(|v| v.to_bits()).collect();
+                bits.extend(d.eval.slice_loads.iter().map(|v| v.to_bits()));
+                bits
+            };
+            let (two, four) = (run(false), run(true));
+            assert_eq!(two.len(), four.len());
+            for (k, (a, b)) in two.iter().zip(&four).enumerate() {
+                assert_eq!(
+                    a,
+                    b,
+                    "case {n} ({preset}), value {k}: {} against {}",
+                    f64::from_bits(*a),
+                    f64::from_bits(*b)
+                );
+            }
+        }
+    }
+}

@@ -6,10 +6,13 @@
 //! ln and exp are fdlibm's polynomial forms (Sun's e_log.c / e_exp.c, error below 1 ulp, no
 //! tables), evaluated in both lanes at once; the scalar code's table-based `fastmath` kernels
 //! round differently (both within 1 ulp of the exact value). Only for x86-64 (`lib.rs`); other
-//! architectures take the scalar paths.
+//! architectures take the scalar paths. [`x4`] holds the same in four lanes on AVX2, for CPUs
+//! that have it: lane for lane the same operations, so the same results.
 
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+pub(crate) mod x4;
 
 /// Two f64 lanes.
 #[derive(Clone, Copy, Debug)]
@@ -23,6 +26,25 @@ pub(crate) struct M2(pub __m128d);
 
 // SAFETY (every `unsafe` block below): SSE2 is part of the x86-64 baseline.
 impl F2 {
+    /// Lanes.
+    pub const N: usize = 2;
+    /// Lane i is `f(i)`.
+    #[inline(always)]
+    pub fn from_fn(mut f: impl FnMut(usize) -> f64) -> F2 {
+        let a = f(0);
+        F2::new(a, f(1))
+    }
+    /// The lanes in order.
+    #[inline(always)]
+    pub fn to_array(self) -> [f64; 2] {
+        self.lanes()
+    }
+    /// Lanes 2h and 2h + 1 (h = 0: the two lanes), as the four-lane type's halves.
+    #[inline(always)]
+    pub fn half(self, h: usize) -> F2 {
+        debug_assert_eq!(h, 0);
+        self
+    }
     #[inline(always)]
     pub fn splat(v: f64) -> F2 {
         F2(unsafe { _mm_set1_pd(v) })
@@ -79,6 +101,14 @@ impl F2 {
 }
 
 impl M2 {
+    /// All lanes set, as [`M2::bits`].
+    pub const FULL: i32 = 3;
+    /// Lanes 2h and 2h + 1 (h = 0: the two lanes).
+    #[inline(always)]
+    pub fn half(self, h: usize) -> M2 {
+        debug_assert_eq!(h, 0);
+        self
+    }
     /// Every lane `b`.
     #[inline(always)]
     pub fn splat(b: bool) -> M2 {
@@ -242,6 +272,12 @@ impl V3x2 {
             y: m.select(self.y, zero),
             z: m.select(self.z, zero),
         }
+    }
+    /// Lanes 2h and 2h + 1 (h = 0: the two lanes).
+    #[inline(always)]
+    pub fn half(&self, h: usize) -> V3x2 {
+        debug_assert_eq!(h, 0);
+        *self
     }
     /// The sum of the two lanes.
     #[inline(always)]
