@@ -76,6 +76,45 @@ fn automatic_integrator_work_under_combined_load_and_jumping_inputs() {
 }
 
 #[test]
+fn default_settings_work_on_the_settled_w25_case() {
+    // the [W25] case as shipped (automatic integrator, the presets' tolerance), settled: about
+    // one Rosenbrock-W step per 1 ms communication step (526 in 0.5 s) is what makes it run in
+    // real time
+    let mut s = Simulation::new(Bearing::default_preset());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.initialize(0.0).unwrap();
+    for k in 0..40 {
+        s.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+    }
+    let o = s.last_outputs();
+    check(
+        "default settings, settled [W25] case, 40 ms, steps",
+        o.integrator_steps,
+        BASE_DEFAULT.0,
+    );
+    check("default settings, settled [W25] case, 40 ms, RHS", o.integrator_rhs, BASE_DEFAULT.1);
+}
+
+#[test]
+fn rosenbrock_work_with_ramped_inputs() {
+    // the 1 % load of the jumping case above, at 50 Hz, ramped within each 1 ms step by the
+    // master's input derivatives: no ring per step to resolve (held: 20.6k RHS in 10 ms)
+    let mut s = common::dynamic_element(2, 1e-6, 0.0);
+    let fx = |t: f64| 30e3 * (1.0 + 0.01 * (std::f64::consts::TAU * 50.0 * t).sin());
+    for k in 0..10 {
+        let t = k as f64 * 1e-3;
+        s.set_real(var::FX, fx(t)).unwrap();
+        s.set_real_derivative(var::FX, (fx(t + 1e-3) - fx(t)) / 1e-3).unwrap();
+        s.do_step(t, 1e-3).unwrap();
+    }
+    check(
+        "Rosenbrock tol 1e-6, ramped load, 10 ms, RHS",
+        s.last_outputs().integrator_rhs,
+        BASE_ROS_RAMPED,
+    );
+}
+
+#[test]
 fn gill_milne_hamming_work_is_fixed_by_the_step() {
     // fixed step: 1 ms / 2 us = 500 steps, two evaluations per step plus the start
     let (steps, rhs, rejected) = dynamic_counts(1, 2e-6, 0.0, 10, 1e-4);
@@ -119,6 +158,11 @@ const BASE_ROS: (i32, i32) = (65, 285);
 /// RHS, against Dormand-Prince 3491 and Rosenbrock-W 13497.
 const BASE_AUTO: (i32, i32) = (216, 1632);
 const BASE_AUTO_JUMPS: i32 = 4218;
+/// Session 24: the default settings (automatic integrator, tolerance 1e-5 since this session)
+/// on the settled [W25] case, 40 ms: 60 steps, 265 RHS (at 1e-6 it was 1049 RHS); Rosenbrock-W
+/// with ramped loads (`tests/input_interpolation.rs`): 4833 RHS, against 20553 held.
+const BASE_DEFAULT: (i32, i32) = (60, 265);
+const BASE_ROS_RAMPED: i32 = 4833;
 /// 500 steps x 2 evaluations (predictor-corrector) + the Gill start.
 const BASE_GMH_RHS: i32 = 1007;
 /// About 1 Newton iteration per step while the azimuth table of the warm start fills (its

@@ -236,7 +236,7 @@ pub fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Resul
 
 /// Set each table input's rate over the step from `t` (inputs `u`) to `t_next`: the secant of
 /// its table, so the ramp ends on the table's value at `t_next`.
-fn set_input_rates(sim: &mut Simulation, scenario: &Scenario, u: &[f64], t: f64, t_next: f64) -> Result<(), CliError> {
+pub fn set_input_rates(sim: &mut Simulation, scenario: &Scenario, u: &[f64], t: f64, t_next: f64) -> Result<(), CliError> {
     for ((var, signal), value) in scenario.inputs.iter().zip(u) {
         if let Signal::Table { .. } = signal {
             let rate = (signal.at(t_next) - value) / (t_next - t);
