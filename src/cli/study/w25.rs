@@ -348,7 +348,7 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
         md,
         "## Reference case: Fa = 30 kN, Fr = 0, 3500 rpm, aligned shaft\n\n\
          Skew {:.4} deg (mean over rollers and time), tilt {:.5} deg, friction torque {:.3} N m, power loss {:.0} W \
-         (torque × speed = {:.0} W on the time average). Cost at default settings (20 slices, tolerance 1e-6): \
+         (torque × speed = {:.0} W on the time average). Cost at default settings (20 slices, tolerance {:e}): \
          {:.1} s of wall time per simulated second, {:.0} right-hand-side evaluations and {:.0} steps per simulated second \
          (this machine, two cases in parallel on two cores).\n",
         reference.skew_mean * DEG,
@@ -356,6 +356,7 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
         reference.torque,
         reference.power,
         reference.torque * reference.speed_rpm * std::f64::consts::PI / 30.0,
+        trb::bearing::Bearing::default_preset().tolerance,
         reference.wall / reference.simulated,
         reference.rhs as f64 / reference.simulated,
         reference.steps as f64 / reference.simulated
@@ -567,9 +568,10 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
          Written by `cargo run --release -- study w25` (src/cli/study/w25.rs) from the scenarios in \
          `scenarios/w25_dynamic/` (run any of them with `trb simulate`). Every number comes from the dynamic model \
          the FMU runs at `fidelity` = 1 (docs/dynamic.md) for the TRB130x230 preset as published, 20 slices, \
-         tolerance 1e-6, 50 ms per case, from the steady running state where there is one (`startSteady`: no radial \
+         tolerance {:e} (the preset's), 50 ms per case, from the steady running state where there is one (`startSteady`: no radial \
          load, no deflection) and from the quasi-static seat otherwise. Source: [W25] Wu, Kang, Deng, Lubricants \
-         13(10):438, 2025. Angles in degrees (tilt in millidegrees).\n\n{md}"
+         13(10):438, 2025. Angles in degrees (tilt in millidegrees).\n\n{md}",
+        trb::bearing::Bearing::default_preset().tolerance
     );
     let path = docs.join("results-dynamic.md");
     std::fs::write(&path, doc).map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))?;
