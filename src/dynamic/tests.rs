@@ -501,6 +501,21 @@ fn explore_switches() {
     }
 }
 
+/// The dynamic model of `preset` at its quasi-static start, its parameters and inputs first
+/// changed by `setup` (fidelity 1 is set before).
+fn seated(
+    preset: &str,
+    setup: impl FnOnce(&mut crate::model::Parameters, &mut crate::model::Inputs),
+) -> (super::Dynamic, super::DynamicState, crate::model::Inputs) {
+    let b = Bearing::preset(preset).unwrap();
+    let mut p = crate::model::Parameters::from_bearing(&b);
+    p.fidelity = crate::model::Fidelity::Dynamic;
+    let mut i = crate::model::Inputs::from_bearing(&b);
+    setup(&mut p, &mut i);
+    let (d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+    (d, st, i)
+}
+
 /// N right-hand-side evaluations at the initial state of the [W25] case (for profiling with
 /// callgrind: `RHS_N=50 valgrind --tool=callgrind <test binary> dynamic::tests::rhs_cost --ignored`;
 /// the cost of one is the difference of the runs with RHS_N=51 and RHS_N=1).
@@ -508,11 +523,7 @@ fn explore_switches() {
 #[ignore]
 fn rhs_cost() {
     let n: usize = std::env::var("RHS_N").ok().and_then(|s| s.parse().ok()).unwrap_or(100);
-    let b = Bearing::default_preset();
-    let mut p = crate::model::Parameters::from_bearing(&b);
-    p.fidelity = crate::model::Fidelity::Dynamic;
-    let i = crate::model::Inputs::from_bearing(&b);
-    let (mut d, st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+    let (mut d, st, i) = seated("TRB130x230", |_, _| {});
     // RHS_SCALAR=1: the raceway traction slice by slice (the reference of the two-lane path)
     if std::env::var("RHS_SCALAR").is_ok() {
         d.c.paired_traction = false;
@@ -538,7 +549,7 @@ fn rhs_cost() {
 #[test]
 #[ignore]
 fn rhs_snapshot() {
-    use crate::model::{Fidelity, Inputs, Parameters};
+    use crate::model::{Inputs, Parameters};
     let dir = std::path::Path::new("/tmp/trb_snap");
     let write = std::env::var("SNAP_WRITE").is_ok();
     std::fs::create_dir_all(dir).unwrap();
@@ -567,17 +578,12 @@ fn rhs_snapshot() {
     ];
     let mut worst: f64 = 0.0;
     for (name, preset, setup) in cases {
-        let b = Bearing::preset(preset).unwrap();
-        let mut p = Parameters::from_bearing(&b);
-        p.fidelity = Fidelity::Dynamic;
-        let mut i = Inputs::from_bearing(&b);
-        setup(&mut p, &mut i);
-        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        let (mut d, mut st, i) = seated(preset, setup);
         if std::env::var("SNAP_SCALAR").is_ok() {
             d.c.paired_traction = false;
             d.c.lane_slices = false;
         }
-        let mut out = Outputs::new(b.roller_count);
+        let mut out = Outputs::new(d.g.z);
         for t_end in [0.0, 1e-3] {
             if name == "d19" && t_end > 0.0 {
                 continue; // dry at 60 rpm: very stiff, slow to advance
@@ -633,7 +639,7 @@ fn rhs_snapshot() {
                 let n = y.len();
                 let mut case_worst: f64 = 0.0;
                 let mut at = 0;
-                let zc = b.roller_count;
+                let zc = d.g.z;
                 for (k, (a, bo)) in vals.iter().zip(&old).enumerate() {
                     let scale = if k < 12 {
                         // cone and cage rows: sums of large opposing roller forces; scale by
@@ -728,19 +734,16 @@ fn explore_integrators() {
 #[test]
 fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     use super::jacobian::{BlockJacobian, BlockSystem, M, NG};
-    let b = Bearing::default_preset();
-    let mut p = crate::model::Parameters::from_bearing(&b);
-    p.fidelity = crate::model::Fidelity::Dynamic;
-    p.slices = 10;
-    let mut i = crate::model::Inputs::from_bearing(&b);
-    i.fy = 8e3;
-    i.xi = 0.003_f64.to_radians();
-    let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+    let (mut d, mut st, i) = seated("TRB130x230", |p, i| {
+        p.slices = 10;
+        i.fy = 8e3;
+        i.xi = 0.003_f64.to_radians();
+    });
     d.advance(&mut st, &i, 2e-4).unwrap();
     let n = st.y.len();
-    let z = b.roller_count;
+    let z = d.g.z;
     let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0, n);
-    let scale: Vec<f64> = atol.iter().map(|a| a / p.tolerance).collect();
+    let scale: Vec<f64> = atol.iter().map(|a| a / d.p.tolerance).collect();
     let mut jac = BlockJacobian::zeros(z);
     let mut model = super::Model {
         g: &d.g,
@@ -955,7 +958,7 @@ fn explore_sweep() {
 /// slice count, and the laws without the two-lane traction (dry, `traction` = 1).
 #[test]
 fn paired_traction_agrees_with_the_scalar_law() {
-    use crate::model::{Fidelity, Inputs, Lubrication, Parameters};
+    use crate::model::{Inputs, Lubrication, Parameters};
     use crate::tribology::TractionLaw;
     type Setup = fn(&mut Parameters, &mut Inputs);
     let cases: Vec<(&str, f64, Setup)> = vec![
@@ -996,12 +999,7 @@ fn paired_traction_agrees_with_the_scalar_law() {
         }),
     ];
     for (name, t_end, setup) in cases {
-        let b = Bearing::default_preset();
-        let mut p = Parameters::from_bearing(&b);
-        p.fidelity = Fidelity::Dynamic;
-        let mut i = Inputs::from_bearing(&b);
-        setup(&mut p, &mut i);
-        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        let (mut d, mut st, i) = seated("TRB130x230", setup);
         if t_end > 0.0 {
             d.advance(&mut st, &i, t_end).unwrap();
         }
@@ -1059,7 +1057,7 @@ fn paired_traction_agrees_with_the_scalar_law() {
 #[cfg(target_arch = "x86_64")]
 #[test]
 fn four_lanes_give_the_two_lane_bits() {
-    use crate::model::{Fidelity, Inputs, Parameters};
+    use crate::model::{Inputs, Parameters};
     if !crate::simd_math::x4::available() {
         eprintln!("no AVX2 on this CPU: nothing to compare");
         return;
@@ -1093,12 +1091,7 @@ fn four_lanes_give_the_two_lane_bits() {
         ("32008", |_, i| i.fy = 3e3),
     ];
     for (n, (preset, setup)) in cases.into_iter().enumerate() {
-        let b = Bearing::preset(preset).unwrap();
-        let mut p = Parameters::from_bearing(&b);
-        p.fidelity = Fidelity::Dynamic;
-        let mut i = Inputs::from_bearing(&b);
-        setup(&mut p, &mut i);
-        let (mut d, mut st) = super::Dynamic::at_quasi_static_start(&b, &p, &i).unwrap();
+        let (mut d, mut st, i) = seated(preset, setup);
         // states away from the seat too: moving rollers, sliding contacts
         let mut states = vec![st.y.clone()];
         if n < 3 {
