@@ -563,8 +563,7 @@ impl Simulation {
     /// `fmi2SetRealInputDerivatives` with order 1): the input ramps from its value at the
     /// step's start at `rate` per second over that step. Non-finite rates are refused here.
     pub fn set_real_derivative(&mut self, vr: u32, rate: f64) -> Result<(), AccessError> {
-        self.set_real_derivative_check(vr)?;
-        let (row, j) = var::lookup(vr, self.n_rollers()).ok_or(AccessError::UnknownReference(vr))?;
+        let (row, j) = self.real_input(vr)?;
         if !rate.is_finite() {
             return Err(AccessError::BadValue {
                 vr,
@@ -576,8 +575,9 @@ impl Simulation {
         Ok(())
     }
 
-    /// Whether `vr` is a Real input, whose time derivatives may be set.
-    pub fn set_real_derivative_check(&self, vr: u32) -> Result<(), AccessError> {
+    /// The table row and roller index of `vr` if it is a Real input, whose time derivatives
+    /// may be set.
+    pub fn real_input(&self, vr: u32) -> Result<(&'static var::Variable, usize), AccessError> {
         match var::lookup(vr, self.n_rollers()) {
             None => Err(AccessError::UnknownReference(vr)),
             Some((row, j)) if row.ty != var::VarType::Real || row.causality != Causality::Input => Err(AccessError::BadValue {
@@ -587,7 +587,7 @@ impl Simulation {
                     row.name_for(j + 1)
                 ),
             }),
-            Some(_) => Ok(()),
+            Some(found) => Ok(found),
         }
     }
 

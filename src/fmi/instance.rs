@@ -644,7 +644,7 @@ impl Instance {
             let result = if order == 1 {
                 self.sim.set_real_derivative(vr, value)
             } else {
-                self.sim.set_real_derivative_check(vr).map(|()| {
+                self.sim.real_input(vr).map(|_| {
                     self.log.warning(format_args!(
                         "{F}: the derivative of order {order} of value reference {vr} is not used: the inputs are interpolated linearly"
                     ));
