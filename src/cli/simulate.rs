@@ -154,7 +154,14 @@ pub fn prepare(scenario: &Scenario) -> Result<Simulation, CliError> {
     let t0 = scenario.time(0);
     let u: Vec<f64> = scenario.inputs.iter().map(|(_, s)| s.at(t0)).collect();
     set_inputs(&mut sim, scenario, &u)?;
-    sim.initialize(t0).map_err(|e| model_error(e, None))?;
+    let report = sim.initialize(t0).map_err(|e| model_error(e, None))?;
+    if report.steady_start_failed {
+        // as the FMU logs it
+        eprintln!(
+            "warning: startSteady: no steady running state found (Newton on the dynamic equations did not converge); \
+             the dynamic model starts at the quasi-static seat and its start-up transient is simulated"
+        );
+    }
     Ok(sim)
 }
 
