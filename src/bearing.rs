@@ -906,6 +906,21 @@ impl BearingFile {
 mod tests {
     use super::*;
 
+    /// Bearing and scenario files give their numbers as the doubles nearest to them (Cargo.toml:
+    /// serde_json's `float_roundtrip`): 3500 rpm written out to 17 digits is 3500 pi / 30 to
+    /// the bit, and every shortest round-trip form reads back as itself.
+    #[test]
+    fn json_numbers_read_as_the_nearest_double() {
+        let speed: f64 = serde_json::from_str("366.51914291880917").unwrap();
+        assert_eq!(speed.to_bits(), (3500.0 * std::f64::consts::PI / 30.0).to_bits());
+        let mut v = 1.234_567_890_123_456_7e-9_f64;
+        for _ in 0..2000 {
+            let back: f64 = serde_json::from_str(&format!("{v:?}")).unwrap();
+            assert_eq!(back.to_bits(), v.to_bits(), "{v:?}");
+            v *= 1.013_7;
+        }
+    }
+
     #[test]
     fn all_presets_load() {
         for (name, _) in PRESETS {
