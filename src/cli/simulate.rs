@@ -189,25 +189,7 @@ fn run_prepared<W: Write>(
         let progress = progress_bar(scenario.n_steps, quiet);
         // 2. Steps.
         for k in 0..scenario.n_steps {
-            let (t, t_next) = (scenario.time(k), scenario.time(k + 1));
-            if scenario.interpolate_inputs {
-                set_input_rates(&mut sim, scenario, &u, t, t_next)?;
-            }
-            sim.do_step(t, t_next - t).map_err(|e| {
-                let inputs = if scenario.interpolate_inputs {
-                    "inputs ramped"
-                } else {
-                    "inputs held"
-                };
-                model_error(
-                    e,
-                    Some(format!("at t = {t:?}: the step to t = {t_next:?} ({inputs} from u({t:?})) failed")),
-                )
-            })?;
-            for (ui, (_, signal)) in u.iter_mut().zip(&scenario.inputs) {
-                *ui = signal.at(t_next);
-            }
-            set_inputs(&mut sim, scenario, &u)?;
+            let t_next = step(&mut sim, scenario, &mut u, k)?;
             sim.outputs()
                 .map_err(|e| model_error(e, Some(format!("at t = {t_next:?}: solving for the inputs u({t_next:?}) failed"))))?;
             write_row(&mut line, &mut sim, scenario, t_next, &u)?;
@@ -241,9 +223,35 @@ pub fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Resul
     Ok(())
 }
 
+/// Communication step k of `scenario` (stepping semantics 2, `scenario.rs`), the inputs `u`
+/// those at t_k: their rates where the scenario ramps them, the step, and the inputs set to
+/// u(t_{k+1}), which `u` becomes. Returns t_{k+1}.
+pub fn step(sim: &mut Simulation, scenario: &Scenario, u: &mut [f64], k: usize) -> Result<f64, CliError> {
+    let (t, t_next) = (scenario.time(k), scenario.time(k + 1));
+    if scenario.interpolate_inputs {
+        set_input_rates(sim, scenario, u, t, t_next)?;
+    }
+    sim.do_step(t, t_next - t).map_err(|e| {
+        let inputs = if scenario.interpolate_inputs {
+            "inputs ramped"
+        } else {
+            "inputs held"
+        };
+        model_error(
+            e,
+            Some(format!("at t = {t:?}: the step to t = {t_next:?} ({inputs} from u({t:?})) failed")),
+        )
+    })?;
+    for (ui, (_, signal)) in u.iter_mut().zip(&scenario.inputs) {
+        *ui = signal.at(t_next);
+    }
+    set_inputs(sim, scenario, u)?;
+    Ok(t_next)
+}
+
 /// Set each table input's rate over the step from `t` (inputs `u`) to `t_next`: the secant of
 /// its table, so the ramp ends on the table's value at `t_next`.
-pub fn set_input_rates(sim: &mut Simulation, scenario: &Scenario, u: &[f64], t: f64, t_next: f64) -> Result<(), CliError> {
+fn set_input_rates(sim: &mut Simulation, scenario: &Scenario, u: &[f64], t: f64, t_next: f64) -> Result<(), CliError> {
     for ((var, signal), value) in scenario.inputs.iter().zip(u) {
         if let Signal::Table { .. } = signal {
             let rate = (signal.at(t_next) - value) / (t_next - t);

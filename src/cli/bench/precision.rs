@@ -8,7 +8,7 @@
 //! torque, mean skew and roller 1's skew (the targets of issue 5 name those two).
 
 use crate::cli::scenario::{Scenario, Value, Var};
-use crate::cli::simulate::{prepare, set_input_rates, set_inputs};
+use crate::cli::simulate::{prepare, step};
 use std::time::Instant;
 use trb::variables as var;
 
@@ -168,15 +168,7 @@ pub fn run(scenario: &Scenario, method: &Method) -> Result<Trace, String> {
     };
     read(&mut sim, s.time(0))?;
     for k in 0..s.n_steps {
-        let (t, t_next) = (s.time(k), s.time(k + 1));
-        if s.interpolate_inputs {
-            set_input_rates(&mut sim, &s, &u, t, t_next).map_err(|e| e.message)?;
-        }
-        sim.do_step(t, t_next - t).map_err(|e| format!("t = {t:.6} s: {e}"))?;
-        for (value, (_, signal)) in u.iter_mut().zip(&s.inputs) {
-            *value = signal.at(t_next);
-        }
-        set_inputs(&mut sim, &s, &u).map_err(|e| e.message)?;
+        let t_next = step(&mut sim, &s, &mut u, k).map_err(|e| e.message)?;
         read(&mut sim, t_next)?;
     }
     let wall = started.elapsed().as_secs_f64();
