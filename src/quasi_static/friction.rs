@@ -135,6 +135,44 @@ struct SliceConst {
 /// shear turn sharply and interpolation loses accuracy, every slice is evaluated directly.
 const TABLE_PRESSURE: f64 = 4.5e9;
 
+/// What the lane read of the friction table (`friction_lanes.rs`) takes of a raceway's slice
+/// positions, one array per quantity, padded with zeros to a multiple of four slices.
+#[derive(Debug, Clone, Default)]
+struct LineLanes {
+    /// `SliceConst::table_max` where the slice slides, else -1 (no load is read).
+    table_max: Vec<f64>,
+    /// 1 where the slice rolls (`SliceConst::rolls`), else 0.
+    rolls: Vec<f64>,
+    /// The [`SliceWeights`].
+    slide: Vec<f64>,
+    entrain: Vec<f64>,
+    skew: Vec<f64>,
+    sign: Vec<f64>,
+}
+
+impl LineLanes {
+    fn fill(&mut self, consts: &[SliceConst], w: &SliceWeights) {
+        let padded = consts.len().div_ceil(4) * 4;
+        let put = |v: &mut Vec<f64>, f: &dyn Fn(usize) -> f64| {
+            v.clear();
+            v.extend((0..consts.len()).map(f));
+            v.resize(padded, 0.0);
+        };
+        put(&mut self.table_max, &|k| {
+            if consts[k].v_s > 0.0 {
+                consts[k].table_max
+            } else {
+                -1.0
+            }
+        });
+        put(&mut self.rolls, &|k| if consts[k].rolls { 1.0 } else { 0.0 });
+        put(&mut self.slide, &|k| w.slide[k]);
+        put(&mut self.entrain, &|k| w.entrain[k]);
+        put(&mut self.skew, &|k| w.skew[k]);
+        put(&mut self.sign, &|k| w.sign[k]);
+    }
+}
+
 /// [`SliceConst`] of both raceways at one speed.
 #[derive(Debug, Clone, Default)]
 struct SpeedCache {
@@ -142,6 +180,8 @@ struct SpeedCache {
     speed: f64,
     cone: Vec<SliceConst>,
     cup: Vec<SliceConst>,
+    cone_lanes: LineLanes,
+    cup_lanes: LineLanes,
     /// Traction coefficient and rolling resistance per unit load of every slice position of
     /// both raceways (cone lines, then cup lines), and the flange's friction force per unit
     /// load, at this speed, tabulated over the load as the solves need them (fidelity 0).
@@ -176,6 +216,8 @@ pub struct FrictionModel {
     /// the dynamic model does, for the quasi-static start of the dynamic model (its outputs
     /// bit for bit as before).
     halley: bool,
+    /// Read the friction table four slices at a time (the CPU has AVX2), else two.
+    four_lanes: bool,
 }
 
 impl FrictionModel {
@@ -238,6 +280,7 @@ impl FrictionModel {
                 ..SpeedCache::default()
             },
             halley: p.fidelity == crate::model::Fidelity::QuasiStatic,
+            four_lanes: four_lanes_available(),
         }
     }
 
@@ -382,6 +425,7 @@ impl FrictionModel {
     /// rolling resistance per unit load, interpolated in ln(load) (`load_table`: relative error
     /// below 6e-6 p⁴ for a law ~ q^p; loads outside its grid are evaluated directly).
     #[allow(clippy::too_many_arguments)]
+    #[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
     fn raceway_tabulated(
         &self,
         line: &ContactLine,
@@ -415,15 +459,52 @@ impl FrictionModel {
     /// (no sliding, above `table_max`, off the grid). Tabulated in logarithms: the film's
     /// viscosity grows as exp(alpha p) with p ~ sqrt(q), which ln(mu) follows smoothly and mu
     /// itself does not; rolling / q is a power law.
+    #[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
     fn slice_friction_read(&self, table: &mut LoadTable, line: usize, c: &SliceConst, r_bar: f64, q: f64) -> Option<(f64, f64)> {
         if !(c.v_s > 0.0 && q <= c.table_max) {
             return None;
         }
-        let [ln_mu, ln_rolling] = table.get(line, q, |q| {
-            let (mu, rolling) = self.slice_friction::<true>(c, r_bar, q);
-            [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
-        })?;
+        let [ln_mu, ln_rolling] = table.get(line, q, |q| self.slice_node(c, r_bar, q))?;
         Some((fm::exp(ln_mu), if c.rolls { fm::exp(ln_rolling) * q } else { 0.0 }))
+    }
+
+    /// What the friction table holds for a slice at load `q` (a node): ln of the traction
+    /// coefficient and, where the slice rolls, ln of the rolling resistance per unit load.
+    fn slice_node(&self, c: &SliceConst, r_bar: f64, q: f64) -> [f64; 2] {
+        let (mu, rolling) = self.slice_friction::<true>(c, r_bar, q);
+        [fm::ln(mu), if c.rolls { fm::ln(rolling / q) } else { 0.0 }]
+    }
+
+    /// [`FrictionModel::raceway_tabulated`] in lanes: four where the CPU has AVX2, else two
+    /// (SSE2); the same bits either way (`friction_lanes.rs`). Other architectures: the
+    /// scalar read.
+    #[allow(clippy::too_many_arguments)]
+    fn raceway_tabulated_fast(
+        &self,
+        line: &ContactLine,
+        weights: &SliceWeights,
+        consts: &[SliceConst],
+        lanes: &LineLanes,
+        table: &mut LoadTable,
+        first: usize,
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        #[cfg(target_arch = "x86_64")]
+        {
+            let _ = weights;
+            if self.four_lanes {
+                // SAFETY: `four_lanes` is set only where the CPU has AVX2 (`FrictionModel::new`).
+                unsafe { lanes4::raceway_tabulated_avx2(self, line, consts, lanes, table, first, loads, speed) }
+            } else {
+                lanes2::raceway_tabulated_lanes(self, line, consts, lanes, table, first, loads, speed)
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let _ = lanes;
+            self.raceway_tabulated(line, weights, consts, table, first, loads, speed)
+        }
     }
 
     /// [`FrictionModel::raceway_sliced`] straight from the laws (at standstill).
@@ -541,6 +622,8 @@ impl FrictionModel {
             if speed != 0.0 {
                 self.slice_consts(&g.cone, &self.cone_weights, speed.abs(), &mut cache.cone);
                 self.slice_consts(&g.cup, &self.cup_weights, speed.abs(), &mut cache.cup);
+                cache.cone_lanes.fill(&cache.cone, &self.cone_weights);
+                cache.cup_lanes.fill(&cache.cup, &self.cup_weights);
                 cache.raceways.reset(2 * ns);
                 cache.flange.reset(1);
             } else {
@@ -555,8 +638,26 @@ impl FrictionModel {
                 let (cone, cup) = (&loads[..ns], &loads[ns..]);
                 if self.halley && !cache.cone.is_empty() {
                     (
-                        self.raceway_tabulated(&g.cone, &self.cone_weights, &cache.cone, &mut cache.raceways, 0, cone, speed),
-                        self.raceway_tabulated(&g.cup, &self.cup_weights, &cache.cup, &mut cache.raceways, ns, cup, speed),
+                        self.raceway_tabulated_fast(
+                            &g.cone,
+                            &self.cone_weights,
+                            &cache.cone,
+                            &cache.cone_lanes,
+                            &mut cache.raceways,
+                            0,
+                            cone,
+                            speed,
+                        ),
+                        self.raceway_tabulated_fast(
+                            &g.cup,
+                            &self.cup_weights,
+                            &cache.cup,
+                            &cache.cup_lanes,
+                            &mut cache.raceways,
+                            ns,
+                            cup,
+                            speed,
+                        ),
                     )
                 } else if self.halley {
                     (
@@ -644,6 +745,54 @@ impl FrictionModel {
     }
 }
 
+/// Whether the friction table is read four slices at a time (x86-64 with AVX2).
+fn four_lanes_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        crate::simd_math::x4::available()
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
+/// The friction table read two slices at a time (SSE2, every x86-64 CPU).
+#[cfg(target_arch = "x86_64")]
+mod lanes2 {
+    use super::*;
+    use crate::quasi_static::load_table::{LN_FIRST as LOAD_GRID_FIRST, NODES as LOAD_GRID_NODES, STEP as LOAD_GRID_STEP};
+    use crate::simd_math::{exp, ln, F2 as F};
+    include!("friction_lanes.rs");
+}
+
+/// The friction table read four slices at a time (AVX2), entered through
+/// [`raceway_tabulated_avx2`](lanes4::raceway_tabulated_avx2).
+#[cfg(target_arch = "x86_64")]
+mod lanes4 {
+    use super::*;
+    use crate::quasi_static::load_table::{LN_FIRST as LOAD_GRID_FIRST, NODES as LOAD_GRID_NODES, STEP as LOAD_GRID_STEP};
+    use crate::simd_math::x4::{exp, ln, F4 as F};
+    include!("friction_lanes.rs");
+
+    /// `raceway_tabulated_lanes` in four lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU has AVX2 (`simd_math::x4::available`).
+    #[allow(clippy::too_many_arguments)]
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn raceway_tabulated_avx2(
+        model: &FrictionModel,
+        line: &ContactLine,
+        consts: &[SliceConst],
+        lanes: &LineLanes,
+        table: &mut LoadTable,
+        first: usize,
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        raceway_tabulated_lanes(model, line, consts, lanes, table, first, loads, speed)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -711,5 +860,67 @@ mod tests {
             );
             assert!(mu_abs < 2e-6 && mu_rel < 1e-4 && roll_rel < 2e-5 && flange_rel < 1e-6, "{name}");
         }
+    }
+
+    /// The lane read of the friction table (`friction_lanes.rs`) against the scalar read, every
+    /// preset, both raceways, lines of slice loads that mix unloaded slices, loads below the
+    /// table's grid, ordinary loads and loads above its pressure limit: the same friction to
+    /// rounding (the logarithm and exponential round differently, the sums are added in
+    /// another order), and two lanes and four lanes the same bits.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_lane_read_gives_the_scalar_read() {
+        let mut lines = 0;
+        for name in ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"] {
+            let b = Bearing::preset(name).unwrap();
+            let p = Parameters::from_bearing(&b);
+            let qs = super::super::QuasiStatic::new(&b, &p).unwrap();
+            let (g, fr) = (&qs.geometry, &qs.friction);
+            let speed = Inputs::from_bearing(&b).speed;
+            for (first, line, weights) in [(0, &g.cone, &fr.cone_weights), (g.slices, &g.cup, &fr.cup_weights)] {
+                let mut consts = Vec::new();
+                fr.slice_consts(line, weights, speed.abs(), &mut consts);
+                let mut lanes = LineLanes::default();
+                lanes.fill(&consts, weights);
+                let q_max = consts.iter().map(|c| c.table_max).fold(0.0, f64::max);
+                let mut table = LoadTable::default();
+                table.reset(2 * g.slices);
+                for case in 0..40usize {
+                    // a load profile along the line: a ramp from `low` to `high` (log scale),
+                    // some slices unloaded
+                    let (low, high) = (1e-5 * 10f64.powi((case % 5) as i32), q_max * [0.01, 0.3, 1.5][case % 3]);
+                    let loads: Vec<f64> = (0..g.slices)
+                        .map(|k| {
+                            let f = k as f64 / (g.slices - 1) as f64;
+                            if (k + case) % 7 == 3 {
+                                0.0
+                            } else {
+                                low * (high / low).powf(if case % 2 == 0 { f } else { 1.0 - f })
+                            }
+                        })
+                        .collect();
+                    for sp in [speed, -speed] {
+                        let scalar = fr.raceway_tabulated(line, weights, &consts, &mut table, first, &loads, sp);
+                        let two = lanes2::raceway_tabulated_lanes(fr, line, &consts, &lanes, &mut table, first, &loads, sp);
+                        // relative to each value (the sums here do not cancel to below 1e-3
+                        // of their terms)
+                        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+                        let agree = close(two.torque, scalar.torque)
+                            && close(two.skew, scalar.skew)
+                            && close(two.slide_force, scalar.slide_force)
+                            && close(two.rolling, scalar.rolling);
+                        assert!(agree, "{name} {case}: {two:?} vs {scalar:?}");
+                        if crate::simd_math::x4::available() {
+                            // SAFETY: the CPU has AVX2 (checked)
+                            let four = unsafe { lanes4::raceway_tabulated_avx2(fr, line, &consts, &lanes, &mut table, first, &loads, sp) };
+                            let bits = |f: &RacewayFriction| [f.torque, f.skew, f.slide_force, f.rolling].map(f64::to_bits);
+                            assert_eq!(bits(&four), bits(&two), "{name} {case}");
+                        }
+                    }
+                    lines += 1;
+                }
+            }
+        }
+        assert_eq!(lines, 4 * 2 * 40);
     }
 }

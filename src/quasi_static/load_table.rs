@@ -17,7 +17,7 @@
 /// Spacing of the grid in ln(load).
 pub(super) const STEP: f64 = 0.0625;
 /// ln of the first node's load (1 mN): lighter contacts are evaluated directly.
-const LN_FIRST: f64 = -6.907_755_278_982_137;
+pub(super) const LN_FIRST: f64 = -6.907_755_278_982_137;
 /// Nodes per tabulated line: 1 mN up to e^(−6.9 + 191/8) = 2.4e7 N.
 pub(super) const NODES: usize = 384;
 
@@ -39,32 +39,62 @@ impl LoadTable {
         crate::fastmath::exp(LN_FIRST + STEP * i as f64)
     }
 
-    /// Both functions of line `line` at load `q` > 0, `law(q_node)` computing a node; `None`
-    /// outside the grid or where a law is not finite at a node (the caller then evaluates the
-    /// law itself).
+    /// Grid coordinate of a load with logarithm `ln_q`: node i lies at i.
+    #[inline(always)]
+    pub(super) fn grid(ln_q: f64) -> f64 {
+        (ln_q - LN_FIRST) * (1.0 / STEP)
+    }
+
+    /// Whether grid coordinate `x` has the four nodes of its cubic on the grid.
+    #[inline(always)]
+    pub(super) fn on_grid(x: f64) -> bool {
+        x >= 1.0 && x < (NODES - 2) as f64
+    }
+
+    /// The four nodes i - 1 .. i + 2 of line `line` around cell `i` (1 <= i < NODES - 2),
+    /// those not yet computed by `law(q_node)`.
     #[inline]
-    pub(super) fn get(&mut self, line: usize, q: f64, mut law: impl FnMut(f64) -> [f64; 2]) -> Option<[f64; 2]> {
-        let x = (crate::fastmath::ln(q) - LN_FIRST) * (1.0 / STEP);
-        if !(x >= 1.0 && x < (NODES - 2) as f64) {
-            return None;
-        }
-        let i = x as usize;
-        let t = x - i as f64;
+    pub(super) fn nodes(&mut self, line: usize, i: usize, mut law: impl FnMut(f64) -> [f64; 2]) -> &[[f64; 2]] {
         let base = line * NODES + i - 1;
         for n in 0..4 {
             if self.values[base + n][0].is_nan() {
                 self.values[base + n] = law(Self::node_load(i - 1 + n));
             }
         }
-        // Lagrange weights of the nodes at -1, 0, 1, 2
+        &self.values[base..base + 4]
+    }
+
+    /// Every node's two values in one array: function c of node n of line l at
+    /// 2 (l NODES + n) + c (NaN: not computed yet).
+    #[inline(always)]
+    pub(super) fn flat(&self) -> &[f64] {
+        self.values.as_flattened()
+    }
+
+    /// Lagrange weights of the nodes at -1, 0, 1, 2 at position `t` in [0, 1).
+    #[inline(always)]
+    pub(super) fn weights(t: f64) -> [f64; 4] {
         let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-        let w = [
+        [
             -t * t1 * t2 * (1.0 / 6.0),
             tm * t1 * t2 * 0.5,
             -tm * t * t2 * 0.5,
             tm * t * t1 * (1.0 / 6.0),
-        ];
-        let v = &self.values[base..base + 4];
+        ]
+    }
+
+    /// Both functions of line `line` at load `q` > 0, `law(q_node)` computing a node; `None`
+    /// outside the grid or where a law is not finite at a node (the caller then evaluates the
+    /// law itself).
+    #[inline]
+    pub(super) fn get(&mut self, line: usize, q: f64, law: impl FnMut(f64) -> [f64; 2]) -> Option<[f64; 2]> {
+        let x = Self::grid(crate::fastmath::ln(q));
+        if !Self::on_grid(x) {
+            return None;
+        }
+        let i = x as usize;
+        let w = Self::weights(x - i as f64);
+        let v = self.nodes(line, i, law);
         let mut out = [0.0; 2];
         for c in 0..2 {
             out[c] = w[0] * v[0][c] + w[1] * v[1][c] + w[2] * v[2][c] + w[3] * v[3][c];

@@ -49,6 +49,22 @@ impl F2 {
     pub fn splat(v: f64) -> F2 {
         F2(unsafe { _mm_set1_pd(v) })
     }
+    /// Lane i is `base[idx[i]]` (every index in bounds: checked).
+    #[inline(always)]
+    pub fn gather(base: &[f64], idx: [usize; 2]) -> F2 {
+        F2::new(base[idx[0]], base[idx[1]])
+    }
+    /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
+    /// i32 (others: i32::MIN, as the instruction gives).
+    #[inline(always)]
+    pub fn trunc_i32(self) -> (F2, [i32; 2]) {
+        unsafe {
+            let i = _mm_cvttpd_epi32(self.0);
+            let mut out = [0i32; 4];
+            _mm_storeu_si128(out.as_mut_ptr() as *mut __m128i, i);
+            (F2(_mm_cvtepi32_pd(i)), [out[0], out[1]])
+        }
+    }
     /// Lanes (a, b).
     #[inline(always)]
     pub fn new(a: f64, b: f64) -> F2 {

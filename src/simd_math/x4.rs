@@ -43,6 +43,29 @@ impl F4 {
         let (a, b, c) = (f(0), f(1), f(2));
         F4(unsafe { _mm256_set_pd(f(3), c, b, a) })
     }
+    /// Lane i is `base[idx[i]]` (every index in bounds: checked; one gather instruction).
+    #[inline(always)]
+    pub fn gather(base: &[f64], idx: [usize; 4]) -> F4 {
+        assert!(idx.iter().all(|&i| i < base.len()));
+        // SAFETY: every index lies within `base` (above).
+        F4(unsafe {
+            _mm256_i64gather_pd::<8>(
+                base.as_ptr(),
+                _mm256_set_epi64x(idx[3] as i64, idx[2] as i64, idx[1] as i64, idx[0] as i64),
+            )
+        })
+    }
+    /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
+    /// i32 (others: i32::MIN, as the instruction gives).
+    #[inline(always)]
+    pub fn trunc_i32(self) -> (F4, [i32; 4]) {
+        unsafe {
+            let i = _mm256_cvttpd_epi32(self.0);
+            let mut out = [0i32; 4];
+            _mm_storeu_si128(out.as_mut_ptr() as *mut __m128i, i);
+            (F4(_mm256_cvtepi32_pd(i)), out)
+        }
+    }
     /// The lanes in order.
     #[inline(always)]
     pub fn to_array(self) -> [f64; 4] {
