@@ -32,14 +32,18 @@ pub(super) fn raceway_tabulated_lanes(
     while k < ns {
         // past the last slice, lanes repeat it with no load
         let idx: [usize; N] = std::array::from_fn(|i| (k + i).min(ns - 1));
-        let q = F::from_fn(|i| if k + i < ns { loads[k + i] } else { 0.0 });
+        let q = if k + N <= ns {
+            F::load(&loads[k..])
+        } else {
+            F::from_fn(|i| if k + i < ns { loads[k + i] } else { 0.0 })
+        };
         let live = q.gt(zero);
         if !live.any() {
             k += N;
             continue;
         }
         // the padded per-slice arrays (`LineLanes`)
-        let pick = |v: &[f64]| F::from_fn(|i| v[k + i]);
+        let pick = |v: &[f64]| F::load(&v[k..]);
         // the table's lanes: sliding, within its load range, on its grid
         let table_max = pick(&lanes.table_max);
         let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
@@ -56,8 +60,7 @@ pub(super) fn raceway_tabulated_lanes(
                 0
             }
         });
-        let gather = |table: &LoadTable| -> [F; 8] { std::array::from_fn(|j| F::gather(table.flat(), start.map(|s| s + j))) };
-        let mut v = gather(table);
+        let mut v = gather_nodes(table.flat(), start);
         let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
         if missing.any() {
             let bits = missing.bits();
@@ -67,7 +70,7 @@ pub(super) fn raceway_tabulated_lanes(
                     table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
                 }
             }
-            v = gather(table);
+            v = gather_nodes(table.flat(), start);
         }
         // `LoadTable::weights`, lane by lane the same operations
         let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
@@ -117,4 +120,20 @@ pub(super) fn raceway_tabulated_lanes(
         slide_force: slide_force.lane_sum(),
         rolling: rolling_sum.lane_sum(),
     }
+}
+
+/// The eight values from `start[i]` on (the four nodes' two functions) of every lane.
+#[inline(always)]
+fn gather_nodes(flat: &[f64], start: [usize; F::N]) -> [F; 8] {
+    assert!(start.iter().all(|&s| s + 8 <= flat.len()));
+    let mut v = [F::splat(0.0); 8];
+    for (j, v) in v.iter_mut().enumerate() {
+        let mut idx = start;
+        for i in idx.iter_mut() {
+            *i += j;
+        }
+        // SAFETY: every lane's eight values lie within the table (above).
+        *v = unsafe { F::gather(flat, idx) };
+    }
+    v
 }

@@ -19,6 +19,7 @@
 
 mod friction;
 mod load_table;
+#[cfg(target_arch = "x86_64")]
 mod simd;
 mod skew;
 mod stiffness;
@@ -198,16 +199,18 @@ struct LineSums {
     extrapolated: bool,
 }
 
-/// Per-slice constants of one contact line, as flat arrays for the slice loop, padded to an
-/// even length for the two-lane kernel (`simd.rs`; a padding slice never touches: lever and
-/// chi 0, crown +inf).
+/// Per-slice constants of one contact line, as flat arrays for the slice loop, padded to a
+/// multiple of four slices for the lane kernel (`simd.rs`; a padding slice never touches:
+/// lever and chi 0, crown +inf).
 #[derive(Debug, Clone)]
 struct SliceTable {
-    /// Number of slices (the arrays may be one longer).
+    /// Number of slices (the arrays may be up to three longer).
     n: usize,
     /// Use the two-lane kernel (`simd.rs`). Not for the quasi-static start of the dynamic
     /// model: the scalar loop gives that start bit for bit as before the kernel existed.
     vector: bool,
+    /// Run that kernel four slices at a time (the CPU has AVX2; the same bits as two).
+    four_lanes: bool,
     /// ln(8 R) per slice of the Johnson law (empty for Palmgren), and an interference below
     /// which no slice of the line is beyond the law's validity (ln(8R/delta) - 1 >= 3).
     ln_8r: Vec<f64>,
@@ -223,7 +226,7 @@ struct SliceTable {
 impl SliceTable {
     fn new(line: &crate::geometry::ContactLine, crown: &[f64], ls: f64, chi: Option<&[f64]>, vector: bool) -> SliceTable {
         let n = line.lever.len();
-        let padded = (n + 1) & !1;
+        let padded = n.div_ceil(4) * 4;
         let pad = |mut v: Vec<f64>, fill: f64| {
             v.resize(padded, fill);
             v
@@ -231,6 +234,10 @@ impl SliceTable {
         SliceTable {
             n,
             vector,
+            #[cfg(target_arch = "x86_64")]
+            four_lanes: vector && simd::four_lanes_available(),
+            #[cfg(not(target_arch = "x86_64"))]
+            four_lanes: false,
             ln_8r: match &line.law {
                 LineLaw::Johnson { ln_8r, .. } => pad(ln_8r[..n].to_vec(), 0.0),
                 LineLaw::Palmgren { .. } => Vec::new(),
@@ -474,7 +481,7 @@ impl QuasiStatic {
                 LineLaw::Johnson { c, .. } => simd::Law::Johnson { c: *c, ln_8r: &t.ln_8r },
                 LineLaw::Palmgren { k } => simd::Law::Palmgren { k: *k },
             };
-            if let Some(s) = simd::line_sums(t, t.n, law, base, theta, gamma, loads) {
+            if let Some(s) = simd::line_sums(t, t.n, law, base, theta, gamma, loads, t.four_lanes) {
                 return s;
             }
         }

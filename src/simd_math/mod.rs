@@ -49,10 +49,20 @@ impl F2 {
     pub fn splat(v: f64) -> F2 {
         F2(unsafe { _mm_set1_pd(v) })
     }
-    /// Lane i is `base[idx[i]]` (every index in bounds: checked).
+    /// The first two values of `v` (at least two long: checked).
     #[inline(always)]
-    pub fn gather(base: &[f64], idx: [usize; 2]) -> F2 {
-        F2::new(base[idx[0]], base[idx[1]])
+    pub fn load(v: &[f64]) -> F2 {
+        let v = &v[..2];
+        // SAFETY: two values in bounds (above).
+        F2(unsafe { _mm_loadu_pd(v.as_ptr()) })
+    }
+    /// Lane i is `base[idx[i]]`.
+    ///
+    /// # Safety
+    /// Every index lies within `base`.
+    #[inline(always)]
+    pub unsafe fn gather(base: &[f64], idx: [usize; 2]) -> F2 {
+        F2::new(*base.get_unchecked(idx[0]), *base.get_unchecked(idx[1]))
     }
     /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
     /// i32 (others: i32::MIN, as the instruction gives).

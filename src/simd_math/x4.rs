@@ -43,11 +43,19 @@ impl F4 {
         let (a, b, c) = (f(0), f(1), f(2));
         F4(unsafe { _mm256_set_pd(f(3), c, b, a) })
     }
-    /// Lane i is `base[idx[i]]` (every index in bounds: checked; one gather instruction).
+    /// The first four values of `v` (at least four long: checked).
     #[inline(always)]
-    pub fn gather(base: &[f64], idx: [usize; 4]) -> F4 {
-        assert!(idx.iter().all(|&i| i < base.len()));
-        // SAFETY: every index lies within `base` (above).
+    pub fn load(v: &[f64]) -> F4 {
+        let v = &v[..4];
+        // SAFETY: four values in bounds (above).
+        F4(unsafe { _mm256_loadu_pd(v.as_ptr()) })
+    }
+    /// Lane i is `base[idx[i]]` (one gather instruction).
+    ///
+    /// # Safety
+    /// Every index lies within `base`.
+    #[inline(always)]
+    pub unsafe fn gather(base: &[f64], idx: [usize; 4]) -> F4 {
         F4(unsafe {
             _mm256_i64gather_pd::<8>(
                 base.as_ptr(),
