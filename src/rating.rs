@@ -169,7 +169,8 @@ fn lamina_equivalent_power(slice_loads: &[f64], laminae: usize, offset: usize, k
     }
     let mean = sum / rollers as f64;
     if rotating {
-        libm::pow(mean, 4.5 / 4.0)
+        // mean^(9/8) = mean * mean^(1/8): three correctly rounded square roots
+        mean * mean.sqrt().sqrt().sqrt()
     } else {
         mean
     }
@@ -182,7 +183,8 @@ fn lamina_equivalent_power(slice_loads: &[f64], laminae: usize, offset: usize, k
 pub fn reference_rating_life(ratings: &LaminaRatings, slice_loads: &[f64], rotating: RotatingRing) -> f64 {
     let ns = ratings.laminae;
     debug_assert!(!slice_loads.is_empty() && slice_loads.len() % (2 * ns) == 0);
-    let (qi45, qe45) = (libm::pow(ratings.q_ci, 4.5), libm::pow(ratings.q_ce, 4.5));
+    let pow45 = |q: f64| q * q * (q * q) * q.sqrt();
+    let (qi45, qe45) = (pow45(ratings.q_ci), pow45(ratings.q_ce));
     let mut damage = 0.0;
     for k in 0..ns {
         damage += lamina_equivalent_power(slice_loads, ns, 0, k, rotating == RotatingRing::Cone) / qi45

@@ -693,8 +693,17 @@ impl FrictionModel {
                     Lubrication::Dry => tr::dry_mu(self.mu, v_s).abs() * qf,
                     Lubrication::Ehl => {
                         let u_e = speed.abs() * kin.entrain;
-                        let (a, b, p_h) = f.hertz.ellipse(qf);
-                        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
+                        // the contact ellipse and film at this load (not needed where the
+                        // table serves the friction force)
+                        let film = || {
+                            let (a, b, p_h) = f.hertz.ellipse(qf);
+                            (
+                                a,
+                                b,
+                                p_h,
+                                tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf),
+                            )
+                        };
                         match self.traction {
                             tr::TractionLaw::ThermalEyring => {
                                 let slide_roll = if kin.entrain > 0.0 { kin.slide.abs() / kin.entrain } else { 2.0 };
@@ -710,10 +719,12 @@ impl FrictionModel {
                                         .flatten();
                                     read.map_or_else(|| law(qf), |v| fm::exp(v[0]) * qf)
                                 } else {
+                                    let (a, b, p_h, h) = film();
                                     self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                 }
                             }
                             tr::TractionLaw::NewtonianEyring => {
+                                let (a, b, p_h, h) = film();
                                 let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
                                 qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)
                                     + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h)

@@ -56,13 +56,14 @@ impl F2 {
         // SAFETY: two values in bounds (above).
         F2(unsafe { _mm_loadu_pd(v.as_ptr()) })
     }
-    /// Lane i is `base[idx[i]]`.
+    /// Vector j (j < 8) holds `base[start[i] + j]` in lane i.
     ///
     /// # Safety
-    /// Every index lies within `base`.
+    /// `start[i] + 8 <= base.len()` for every lane.
     #[inline(always)]
-    pub unsafe fn gather(base: &[f64], idx: [usize; 2]) -> F2 {
-        F2::new(*base.get_unchecked(idx[0]), *base.get_unchecked(idx[1]))
+    pub unsafe fn gather8(base: &[f64], start: [usize; 2]) -> [F2; 8] {
+        let (a, b) = (base.as_ptr().add(start[0]), base.as_ptr().add(start[1]));
+        std::array::from_fn(|j| F2::new(*a.add(j), *b.add(j)))
     }
     /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
     /// i32 (others: i32::MIN, as the instruction gives).
