@@ -811,7 +811,7 @@ mod tests {
 
     /// The tabulated slice laws as `raceway_tabulated` reads them against the laws themselves,
     /// every slice position of both raceways of every preset at its speed, over loads from
-    /// 1 N up to the table's limit (a Hertz pressure of 4.5 GPa): the traction coefficient
+    /// 2 µN up to the table's limit (a Hertz pressure of 4.5 GPa): the traction coefficient
     /// (absolute: where it is small, ~1e-3 at near-zero sliding, it rises as steeply as q^5
     /// and its relative error is largest, but its force is negligible there) and the rolling
     /// resistance and the flange's friction force (relative).
@@ -831,7 +831,7 @@ mod tests {
                 table.reset(consts.len());
                 for (k, c) in consts.iter().enumerate().filter(|(_, c)| c.v_s > 0.0) {
                     let law = |q: f64| fr.slice_friction::<true>(c, line.r_bar[k], q);
-                    for q in (0..).map(|m| 1.0233_f64.powi(m)).take_while(|q| *q <= c.table_max) {
+                    for q in (0..).map(|m| 2e-6 * 1.0233_f64.powi(m)).take_while(|q| *q <= c.table_max) {
                         let (mu, rolling) = law(q);
                         let (mu_read, rolling_read) = fr
                             .slice_friction_read(&mut table, k, c, line.r_bar[k], q)

@@ -16,10 +16,13 @@
 
 /// Spacing of the grid in ln(load).
 pub(super) const STEP: f64 = 0.0625;
-/// ln of the first node's load (1 mN): lighter contacts are evaluated directly.
-pub(super) const LN_FIRST: f64 = -6.907_755_278_982_137;
-/// Nodes per tabulated line: 1 mN up to e^(−6.9 + 191/8) = 2.4e7 N.
-pub(super) const NODES: usize = 384;
+/// ln of the first node's load, 0.97 µN (ln 1 mN − 111 steps: the nodes of the table that
+/// began at 1 mN, extended): lighter contacts are evaluated directly. Rollers outside the
+/// load zone of a radially loaded bearing still touch with slice loads of a fraction of a
+/// millinewton, every step; these stay on the table.
+pub(super) const LN_FIRST: f64 = -13.845_255_278_982_137;
+/// Nodes per tabulated line: 0.97 µN up to e^(−13.8 + 511/16) = 7e7 N.
+pub(super) const NODES: usize = 512;
 
 /// Two functions of the load for each of `lines` lines (slice positions), `NODES` nodes each.
 #[derive(Debug, Clone, Default)]
@@ -149,7 +152,7 @@ mod tests {
     fn loads_outside_the_grid_and_laws_that_are_not_finite_are_left_to_the_caller() {
         let mut t = LoadTable::default();
         t.reset(1);
-        assert!(t.get(0, 1e-4, |_| [1.0, 1.0]).is_none());
+        assert!(t.get(0, 1e-7, |_| [1.0, 1.0]).is_none());
         assert!(t.get(0, 1e9, |_| [1.0, 1.0]).is_none());
         assert!(t.get(0, 1.0, |_| [1.0, 1.0]).is_some());
         assert!(t.get(0, 10.0, |_| [f64::NEG_INFINITY, 0.0]).is_none());
