@@ -149,6 +149,33 @@ fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f
     out.iter().all(|v| v.is_finite())
 }
 
+/// The roller unknowns of `src` (roller 1 at some cage angle) interpolated at the rollers'
+/// azimuths after a cage advance `shift` (rad) into `dst` (cubic Catmull-Rom, periodic in
+/// azimuth over the `z` rollers); the cone unknowns are not touched.
+fn spatial_interpolate(z: usize, shift: f64, src: &[f64], dst: &mut [f64]) {
+    let u = shift * z as f64 / TAU;
+    let whole = u.floor();
+    let f = u - whole;
+    // Catmull-Rom weights at fraction f between samples k and k+1.
+    let w = [
+        0.5 * (-f + 2.0 * f * f - f * f * f),
+        0.5 * (2.0 - 5.0 * f * f + 3.0 * f * f * f),
+        0.5 * (f + 4.0 * f * f - 3.0 * f * f * f),
+        0.5 * (-f * f + f * f * f),
+    ];
+    let base = whole.rem_euclid(z as f64) as usize;
+    for j in 0..z {
+        for c in 0..3 {
+            let mut v = 0.0;
+            for (m, wm) in w.iter().enumerate() {
+                let k = (j + base + z + m - 1) % z;
+                v += wm * src[3 + 3 * k + c];
+            }
+            dst[3 + 3 * j + c] = v;
+        }
+    }
+}
+
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
 
@@ -1108,6 +1135,9 @@ impl QuasiStatic {
                     || self.table_predict(&warm[2 * block..], &mut x, cage_angle, &now));
             if !predicted {
                 self.predict(&mut x, cage_angle - warm[n]);
+                if warm.len() == full {
+                    self.predict_trend(&mut x, &warm[..2 * block], cage_angle, &now);
+                }
             }
         }
         let prescribed = self.prescribed;
@@ -1297,39 +1327,76 @@ impl QuasiStatic {
         true
     }
 
+    /// Whether the spatial predictor applies: identical rollers, not axisymmetric.
+    fn spatial_applies(&self) -> bool {
+        let dd = &self.params.roller_dd;
+        !self.axisymmetric && dd.iter().all(|d| *d == dd[0])
+    }
+
     /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
     /// in place while the rollers move through it, so each roller starts from the previous
     /// solution interpolated (cubic, periodic in azimuth) at its new position. Only for
     /// identical rollers; a roller with its own diameter deviation keeps its own state.
     fn predict(&mut self, x: &mut [f64], shift: f64) {
-        let z = self.geometry.z;
-        let dd = &self.params.roller_dd;
-        if shift == 0.0 || !shift.is_finite() || self.axisymmetric || dd.iter().any(|d| *d != dd[0]) {
+        if shift == 0.0 || !shift.is_finite() || !self.spatial_applies() {
             return;
         }
-        let u = shift * z as f64 / TAU;
-        let whole = u.floor();
-        let f = u - whole;
-        // Catmull-Rom weights at fraction f between samples k and k+1.
-        let w = [
-            0.5 * (-f + 2.0 * f * f - f * f * f),
-            0.5 * (2.0 - 5.0 * f * f + 3.0 * f * f * f),
-            0.5 * (f + 4.0 * f * f - 3.0 * f * f * f),
-            0.5 * (-f * f + f * f * f),
-        ];
-        let prev = &mut self.trial;
+        let mut prev = std::mem::take(&mut self.trial);
         prev[..x.len()].copy_from_slice(x);
-        let base = whole.rem_euclid(z as f64) as usize;
-        for j in 0..z {
-            for c in 0..3 {
-                let mut v = 0.0;
-                for (m, wm) in w.iter().enumerate() {
-                    let k = (j + base + z + m - 1) % z;
-                    v += wm * prev[3 + 3 * k + c];
-                }
-                x[3 + 3 * j + c] = v;
-            }
+        spatial_interpolate(self.geometry.z, shift, &prev, x);
+        self.trial = prev;
+    }
+
+    /// Space-time predictor, after the spatial one (`x`: the last solution interpolated at the
+    /// rollers' new azimuths) where the temporal one does not apply (the cage moved more
+    /// than a tenth of a pitch, or the inputs left a straight line): in a smooth time table
+    /// the equilibrium changes with the inputs as well as with the azimuth, and the spatial
+    /// predictor ignores the first. The solve before the last, interpolated at the same new
+    /// azimuths, gives the change of the solution over the last step as a field of the
+    /// azimuth (and the cone's), which continues over this step: x + (x - x_before), both
+    /// interpolated at the new azimuths. Only when that step is this one's repetition: the
+    /// same cage advance (modulo a turn: the same speed and step size), some input changed
+    /// over the last step, and every input's linear continuation is no further from the
+    /// new input than the last value is (a ramp, or the sine of a time table away from its
+    /// turning points; not a jump after a constant, nor the stop of a ramp). `blocks`: the
+    /// last two solves' blocks (see `solve_in_plane`). Returns whether it applied.
+    fn predict_trend(&mut self, x: &mut [f64], blocks: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if !self.spatial_applies() {
+            return false;
         }
+        let n = x.len();
+        let block = n + 1 + WARM_INPUTS;
+        let (last, before) = (&blocks[..block], &blocks[block..2 * block]);
+        let wrap = |a: f64| a - TAU * round_int(a / TAU);
+        let d = cage_angle - last[n];
+        let d1 = last[n] - before[n];
+        let pitch = TAU / self.geometry.z as f64;
+        if !(wrap(d - d1).abs() <= 1e-9 * pitch) {
+            return false;
+        }
+        let (u, u1) = (&last[n + 1..block], &before[n + 1..block]);
+        let mut changed = false;
+        for i in 0..WARM_INPUTS {
+            let step = now[i] - u[i];
+            let prior = u[i] - u1[i];
+            if !((step - prior).abs() <= step.abs() + 1e-12 * now[i].abs().max(1.0)) {
+                return false;
+            }
+            changed |= prior != 0.0;
+        }
+        if !changed || !before[..n].iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        // the solve before the last at the new azimuths, in the step buffer (free until the
+        // first Newton step)
+        let mut older = std::mem::take(&mut self.step);
+        older[..3].copy_from_slice(&before[..3]);
+        spatial_interpolate(self.geometry.z, cage_angle - before[n], &before[..n], &mut older[..n]);
+        for i in 0..n {
+            x[i] += x[i] - older[i];
+        }
+        self.step = older;
+        true
     }
 
     fn newton(
