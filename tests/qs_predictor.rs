@@ -1,9 +1,11 @@
 //! The quasi-static warm start in a smooth time table (issue 13, item 4): the radial load
 //! (and the shaft deflection) vary as (1 + 0.2 sin(2 pi t / 0.1 s)), 1 ms steps, from t = 0.
 //! Newton iteration counts are deterministic (machine independent), so they are checked
-//! here as numbers: the space-time predictor (`QuasiStatic::predict_trend`) must keep them
-//! below what the spatial predictor alone needed. And a solve restored from a serialized
-//! state must replay bit for bit in such a table (the predictor reads the warm start only).
+//! here as numbers: the space-time predictor (`QuasiStatic::predict_trend`) and the
+//! relaxation of unbalanced rollers before the first Newton step
+//! (`QuasiStatic::relax_unbalanced_rollers`) must keep them below what was needed before.
+//! And a solve restored from a serialized state must replay bit for bit in such a table (the
+//! predictor reads the warm start only).
 
 use trb::bearing::Bearing;
 use trb::simulation::Simulation;
@@ -42,10 +44,16 @@ fn iterations(preset: &str, fy: Option<f64>, xi_deg: f64, steps: usize) -> Vec<i
 
 #[test]
 fn smooth_table_needs_fewer_newton_iterations() {
-    // (preset, Fy, xi (deg), largest mean iterations per step; the spatial predictor alone
-    // needed 3.37 and 3.43 in these cases)
+    // (preset, Fy, xi (deg), largest mean iterations per step). Before the space-time
+    // predictor and the relaxation of unbalanced rollers: 3.37, 3.43, 2.76 and 3.10; with the
+    // predictor alone 3.04, 2.73, 2.59 and 2.88; with both 2.87, 2.39, 2.25 and 2.53.
     let mut failed = Vec::new();
-    for (preset, fy, xi, limit) in [("CRB-TRILOBE", Some(1e3), 0.0, 3.1), ("CRB-TRILOBE", None, 0.004, 2.9)] {
+    for (preset, fy, xi, limit) in [
+        ("CRB-TRILOBE", Some(1e3), 0.0, 2.95),
+        ("CRB-TRILOBE", None, 0.004, 2.5),
+        ("32018X", Some(35e3), 0.0, 2.35),
+        ("32018X", None, 0.004, 2.65),
+    ] {
         let its = iterations(preset, fy, xi, 150);
         let mean = its.iter().sum::<i32>() as f64 / its.len() as f64;
         println!("{preset} Fy {fy:?} xi {xi}: mean {mean:.3}, max {}", its.iter().max().unwrap());

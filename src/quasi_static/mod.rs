@@ -745,7 +745,42 @@ impl QuasiStatic {
     /// The caller recomputes the ring residual (the roller's force on the cone changed by at
     /// most `light`). Returns whether any roller moved.
     fn relax_light_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, target: f64, light: f64) -> bool {
-        const LOCAL_ITERATIONS: usize = 10;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
+        };
+        self.relax_rollers(x, fc, m_fc, m_req, 10, needs)
+    }
+
+    /// A warm start's prediction puts each roller where the solutions before had a roller at
+    /// its azimuth, the cone where they continue; at the edge of the load zone, where the zone
+    /// grows or shrinks with the inputs, that can leave a roller pressed by the cone but not
+    /// yet by the cup or the flange (or the reverse): a residual comparable with its own
+    /// loads. The global Newton step then overshoots on the contact that opens or closes
+    /// (the flange's Hertz law has no stiffness at zero load) and needs several iterations to
+    /// come back. Such rollers (residual above 5 % of their largest contact load and above
+    /// 1 % of the largest residual `max_r`) take up to three Newton steps of their own with
+    /// the cone held first (as in `relax_light_rollers`), one roller evaluation each.
+    fn relax_unbalanced_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, max_r: f64) -> bool {
+        let floor = 0.01 * max_r;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > floor && size > 0.05 * e.qi.max(e.qo).max(e.qf) && size.is_finite()
+        };
+        self.relax_rollers(x, fc, m_fc, m_req, 3, needs)
+    }
+
+    /// Newton steps of single rollers with the cone held, up to `local_iterations` each, for
+    /// every roller whose evaluation `needs` it (see `relax_light_rollers`).
+    fn relax_rollers<N: Fn(&RollerEval) -> bool>(
+        &mut self,
+        x: &mut [f64],
+        fc: f64,
+        m_fc: f64,
+        m_req: f64,
+        local_iterations: usize,
+        needs: N,
+    ) -> bool {
         if self.axisymmetric {
             return false;
         }
@@ -753,11 +788,7 @@ impl QuasiStatic {
         let ns = self.geometry.slices;
         let axial = self.geometry.axial;
         let reg = Matrix3::identity() * self.regularisation;
-        let needs = |e: &RollerEval| {
-            let size = e.r.amax();
-            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
-        };
-        if !self.evals.iter().any(needs) {
+        if !self.evals.iter().any(&needs) {
             return false;
         }
         let mut loads = std::mem::take(&mut self.slice_load_buffer);
@@ -765,7 +796,7 @@ impl QuasiStatic {
         let mut moved = false;
         for j in 0..z {
             let roller_loads = &mut loads[2 * ns * j..2 * ns * (j + 1)];
-            for _ in 0..LOCAL_ITERATIONS {
+            for _ in 0..local_iterations {
                 if !needs(&self.evals[j]) {
                     break;
                 }
@@ -1143,9 +1174,9 @@ impl QuasiStatic {
         let prescribed = self.prescribed;
         let result = if cold {
             self.initial_guess(&mut x, inputs, fc, 1.0);
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed, false)
         } else {
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed, true)
         };
         let report = match result {
             Ok(r) => r,
@@ -1164,7 +1195,7 @@ impl QuasiStatic {
                     stepped.axial_displacement = inputs.axial_displacement * f;
                     stepped.displacement = inputs.displacement.map(|v| v * f);
                     self.prescribed = prescribed.map(|v| v.map(|v| v * f));
-                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, self.prescribed) {
+                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, self.prescribed, false) {
                         Ok(r) => {
                             total_iters += r.iterations;
                             if stage == 10 {
@@ -1399,6 +1430,9 @@ impl QuasiStatic {
         true
     }
 
+    /// Damped Newton from `x` (`predicted`: a warm start's prediction, whose unbalanced
+    /// rollers are first relaxed onto the cone, see `relax_unbalanced_rollers`).
+    #[allow(clippy::too_many_arguments)]
     fn newton(
         &mut self,
         x: &mut [f64],
@@ -1408,6 +1442,7 @@ impl QuasiStatic {
         m_req: f64,
         tol: f64,
         prescribed: [Option<f64>; 3],
+        predicted: bool,
     ) -> Result<SolveReport, ModelError> {
         for (c, v) in prescribed.iter().enumerate() {
             if let Some(v) = v {
@@ -1431,6 +1466,10 @@ impl QuasiStatic {
         let (mut max_r, mut merit, mut f_ref, mut ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
         if self.seat_free_rollers(x, fc) {
             (max_r, merit, f_ref, ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
+        }
+        if predicted && max_r > tol * f_ref && self.relax_unbalanced_rollers(x, fc, m_fc, m_req, max_r) {
+            ring = self.ring_residual(x, inputs);
+            (max_r, merit, f_ref) = self.norms(&ring, inputs, fc);
         }
         let mut iterations = 0;
         let mut history = [0.0_f64; 4];
