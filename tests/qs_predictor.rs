@@ -93,3 +93,30 @@ fn smooth_table_replays_bit_for_bit_from_a_serialized_state() {
         assert_eq!(outputs(&mut a), reference, "{preset}: the same instance");
     }
 }
+
+/// qs_speed's `smooth` case 32018X/deflected: 10 steps at the preset's load and 0.004 deg,
+/// then 300 steps of the table. One step (the 108th of the table) needed 8 iterations when a
+/// full Newton step pressed the cone into a roller it had left in place and the line search
+/// cut the step down to 1/32 four times; the roller now relaxes at the trial point
+/// (`QuasiStatic::newton`), and no step needs more than the first one's 6 (the jump from the
+/// constant load onto the table, 11.7 %).
+#[test]
+fn no_step_of_the_table_cuts_newton_down_for_one_roller() {
+    let (mut s, fy0, xi0) = element("32018X", None, 0.004);
+    for k in 0..10 {
+        s.do_step(k as f64 * H, H).unwrap();
+    }
+    let mut its = Vec::new();
+    for k in 10..310 {
+        let t = k as f64 * H;
+        let f = 1.0 + 0.2 * libm::sin(std::f64::consts::TAU * t / 0.1);
+        s.set_real(var::FY, fy0 * f).unwrap();
+        s.set_real(var::XI, xi0 * f).unwrap();
+        s.do_step(t, H).unwrap();
+        its.push(s.last_outputs().solver_iterations);
+    }
+    let mean = its.iter().sum::<i32>() as f64 / its.len() as f64;
+    println!("mean {mean:.3}, max {}", its.iter().max().unwrap());
+    assert!(its[107] <= 4, "the step that stalled: {} iterations", its[107]);
+    assert!(its.iter().all(|&i| i <= 6), "{its:?}");
+}

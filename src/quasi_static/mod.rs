@@ -1510,7 +1510,15 @@ impl QuasiStatic {
                 for i in 0..x.len() {
                     trial[i] = x[i] + alpha * self.step[i];
                 }
-                let (mr, me, fr, rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
+                let (mut mr, mut me, mut fr, mut rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
+                // A full step the merit rejects: where it presses the cone into a roller the
+                // step left in place (a roller the cone did not touch, so the linear model did
+                // not move it), that roller alone takes its own steps at the trial point first
+                // (`relax_unbalanced_rollers`) instead of the whole step being cut down.
+                if alpha == 1.0 && !(me <= merit || me < allowed) && self.relax_unbalanced_rollers(&mut trial, fc, m_fc, m_req, mr) {
+                    rg = self.ring_residual(&trial, inputs);
+                    (mr, me, fr) = self.norms(&rg, inputs, fc);
+                }
                 if me <= merit || (me < allowed && alpha == 1.0) || alpha < 1e-3 {
                     x.copy_from_slice(&trial);
                     max_r = mr;
