@@ -150,6 +150,62 @@ fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f
     out.iter().all(|v| v.is_finite())
 }
 
+/// The roller unknowns of `src` (roller 1 at some cage angle) interpolated at the rollers'
+/// azimuths after a cage advance `shift` (rad) into `dst` (periodic in azimuth over the `z`
+/// rollers); the cone unknowns are not touched. Per roller, the quintic through the six
+/// nearest samples where they are smooth (a full load zone: the error of the cubic
+/// Catmull-Rom spline, only third order, kept the warm start of TRB130x230 and 32008 in a
+/// smooth time table one Newton iteration short), else that cubic spline (the edge of a
+/// load zone, a lobe: the quintic would ring). Smooth: in each unknown, the two fourth
+/// differences of the six samples at most 0.3 times the larger second difference of the
+/// middle four (or 0.09 times the middle first difference: a straight run); a sampled
+/// sinusoid of 17 to 26 rollers per period has a ratio of (2 pi / Z)^2 < 0.14, a kink of 1
+/// and more.
+fn spatial_interpolate(z: usize, shift: f64, src: &[f64], dst: &mut [f64]) {
+    let u = shift * z as f64 / TAU;
+    let whole = u.floor();
+    let f = u - whole;
+    // Catmull-Rom weights at fraction f between samples k and k+1 (samples k-1 .. k+2).
+    let w = [
+        0.5 * (-f + 2.0 * f * f - f * f * f),
+        0.5 * (2.0 - 5.0 * f * f + 3.0 * f * f * f),
+        0.5 * (f + 4.0 * f * f - 3.0 * f * f * f),
+        0.5 * (-f * f + f * f * f),
+    ];
+    // Lagrange weights of the quintic at f on the samples k-2 .. k+3
+    let mut w6 = [0.0; 6];
+    for (i, wi) in w6.iter_mut().enumerate() {
+        let mut l = 1.0;
+        for m in 0..6 {
+            if m != i {
+                l *= (f - (m as f64 - 2.0)) / (i as f64 - m as f64);
+            }
+        }
+        *wi = l;
+    }
+    let base = whole.rem_euclid(z as f64) as usize;
+    let sample = |j: usize, m: usize, c: usize| src[3 + 3 * ((j + base + 2 * z + m - 2) % z) + c];
+    for j in 0..z {
+        let smooth = z >= 8
+            && (0..3).all(|c| {
+                let s: [f64; 6] = std::array::from_fn(|m| sample(j, m, c));
+                let d4 = (s[0] - 4.0 * s[1] + 6.0 * s[2] - 4.0 * s[3] + s[4])
+                    .abs()
+                    .max((s[1] - 4.0 * s[2] + 6.0 * s[3] - 4.0 * s[4] + s[5]).abs());
+                let d2 = (s[1] - 2.0 * s[2] + s[3]).abs().max((s[2] - 2.0 * s[3] + s[4]).abs());
+                d4 <= 0.3 * d2.max(0.3 * (s[3] - s[2]).abs())
+            });
+        for c in 0..3 {
+            let v = if smooth {
+                (0..6).map(|m| w6[m] * sample(j, m, c)).sum()
+            } else {
+                (0..4).map(|m| w[m] * sample(j, m + 1, c)).sum()
+            };
+            dst[3 + 3 * j + c] = v;
+        }
+    }
+}
+
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
 
@@ -725,7 +781,42 @@ impl QuasiStatic {
     /// The caller recomputes the ring residual (the roller's force on the cone changed by at
     /// most `light`). Returns whether any roller moved.
     fn relax_light_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, target: f64, light: f64) -> bool {
-        const LOCAL_ITERATIONS: usize = 10;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
+        };
+        self.relax_rollers(x, fc, m_fc, m_req, 10, needs)
+    }
+
+    /// A warm start's prediction puts each roller where the solutions before had a roller at
+    /// its azimuth, the cone where they continue; at the edge of the load zone, where the zone
+    /// grows or shrinks with the inputs, that can leave a roller pressed by the cone but not
+    /// yet by the cup or the flange (or the reverse): a residual comparable with its own
+    /// loads. The global Newton step then overshoots on the contact that opens or closes
+    /// (the flange's Hertz law has no stiffness at zero load) and needs several iterations to
+    /// come back. Such rollers (residual above 5 % of their largest contact load and above
+    /// 1 % of the largest residual `max_r`) take up to three Newton steps of their own with
+    /// the cone held first (as in `relax_light_rollers`), one roller evaluation each.
+    fn relax_unbalanced_rollers(&mut self, x: &mut [f64], fc: f64, m_fc: f64, m_req: f64, max_r: f64) -> bool {
+        let floor = 0.01 * max_r;
+        let needs = |e: &RollerEval| {
+            let size = e.r.amax();
+            size > floor && size > 0.05 * e.qi.max(e.qo).max(e.qf) && size.is_finite()
+        };
+        self.relax_rollers(x, fc, m_fc, m_req, 3, needs)
+    }
+
+    /// Newton steps of single rollers with the cone held, up to `local_iterations` each, for
+    /// every roller whose evaluation `needs` it (see `relax_light_rollers`).
+    fn relax_rollers<N: Fn(&RollerEval) -> bool>(
+        &mut self,
+        x: &mut [f64],
+        fc: f64,
+        m_fc: f64,
+        m_req: f64,
+        local_iterations: usize,
+        needs: N,
+    ) -> bool {
         if self.axisymmetric {
             return false;
         }
@@ -733,11 +824,7 @@ impl QuasiStatic {
         let ns = self.geometry.slices;
         let axial = self.geometry.axial;
         let reg = Matrix3::identity() * self.regularisation;
-        let needs = |e: &RollerEval| {
-            let size = e.r.amax();
-            size > target && size.is_finite() && e.qi + e.qo + e.qf <= light
-        };
-        if !self.evals.iter().any(needs) {
+        if !self.evals.iter().any(&needs) {
             return false;
         }
         let mut loads = std::mem::take(&mut self.slice_load_buffer);
@@ -745,7 +832,7 @@ impl QuasiStatic {
         let mut moved = false;
         for j in 0..z {
             let roller_loads = &mut loads[2 * ns * j..2 * ns * (j + 1)];
-            for _ in 0..LOCAL_ITERATIONS {
+            for _ in 0..local_iterations {
                 if !needs(&self.evals[j]) {
                     break;
                 }
@@ -1115,14 +1202,17 @@ impl QuasiStatic {
                     || self.table_predict(&warm[2 * block..], &mut x, cage_angle, &now));
             if !predicted {
                 self.predict(&mut x, cage_angle - warm[n]);
+                if warm.len() == full {
+                    self.predict_trend(&mut x, &warm[..2 * block], cage_angle, &now);
+                }
             }
         }
         let prescribed = self.prescribed;
         let result = if cold {
             self.initial_guess(&mut x, inputs, fc, 1.0);
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed, false)
         } else {
-            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed)
+            self.newton(&mut x, inputs, fc, m_fc, m_req, tol, prescribed, true)
         };
         let report = match result {
             Ok(r) => r,
@@ -1141,7 +1231,7 @@ impl QuasiStatic {
                     stepped.axial_displacement = inputs.axial_displacement * f;
                     stepped.displacement = inputs.displacement.map(|v| v * f);
                     self.prescribed = prescribed.map(|v| v.map(|v| v * f));
-                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, self.prescribed) {
+                    match self.newton(&mut xs, &stepped, fc, m_fc, m_req, tol, self.prescribed, false) {
                         Ok(r) => {
                             total_iters += r.iterations;
                             if stage == 10 {
@@ -1304,41 +1394,81 @@ impl QuasiStatic {
         true
     }
 
-    /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
-    /// in place while the rollers move through it, so each roller starts from the previous
-    /// solution interpolated (cubic, periodic in azimuth) at its new position. Only for
-    /// identical rollers; a roller with its own diameter deviation keeps its own state.
-    fn predict(&mut self, x: &mut [f64], shift: f64) {
-        let z = self.geometry.z;
+    /// Whether the spatial predictor applies: identical rollers, not axisymmetric.
+    fn spatial_applies(&self) -> bool {
         let dd = &self.params.roller_dd;
-        if shift == 0.0 || !shift.is_finite() || self.axisymmetric || dd.iter().any(|d| *d != dd[0]) {
-            return;
-        }
-        let u = shift * z as f64 / TAU;
-        let whole = u.floor();
-        let f = u - whole;
-        // Catmull-Rom weights at fraction f between samples k and k+1.
-        let w = [
-            0.5 * (-f + 2.0 * f * f - f * f * f),
-            0.5 * (2.0 - 5.0 * f * f + 3.0 * f * f * f),
-            0.5 * (f + 4.0 * f * f - 3.0 * f * f * f),
-            0.5 * (-f * f + f * f * f),
-        ];
-        let prev = &mut self.trial;
-        prev[..x.len()].copy_from_slice(x);
-        let base = whole.rem_euclid(z as f64) as usize;
-        for j in 0..z {
-            for c in 0..3 {
-                let mut v = 0.0;
-                for (m, wm) in w.iter().enumerate() {
-                    let k = (j + base + z + m - 1) % z;
-                    v += wm * prev[3 + 3 * k + c];
-                }
-                x[3 + 3 * j + c] = v;
-            }
-        }
+        !self.axisymmetric && dd.iter().all(|d| *d == dd[0])
     }
 
+    /// Predictor for a cage advance `shift` (rad) since the warm start: the load zone stays
+    /// in place while the rollers move through it, so each roller starts from the previous
+    /// solution interpolated (periodic in azimuth, `spatial_interpolate`) at its new position. Only for
+    /// identical rollers; a roller with its own diameter deviation keeps its own state.
+    fn predict(&mut self, x: &mut [f64], shift: f64) {
+        if shift == 0.0 || !shift.is_finite() || !self.spatial_applies() {
+            return;
+        }
+        let mut prev = std::mem::take(&mut self.trial);
+        prev[..x.len()].copy_from_slice(x);
+        spatial_interpolate(self.geometry.z, shift, &prev, x);
+        self.trial = prev;
+    }
+
+    /// Space-time predictor, after the spatial one (`x`: the last solution interpolated at the
+    /// rollers' new azimuths) where the temporal one does not apply (the cage moved more
+    /// than a tenth of a pitch, or the inputs left a straight line): in a smooth time table
+    /// the equilibrium changes with the inputs as well as with the azimuth, and the spatial
+    /// predictor ignores the first. The solve before the last, interpolated at the same new
+    /// azimuths, gives the change of the solution over the last step as a field of the
+    /// azimuth (and the cone's), which continues over this step: x + (x - x_before), both
+    /// interpolated at the new azimuths. Only when that step is this one's repetition: the
+    /// same cage advance (modulo a turn: the same speed and step size), some input changed
+    /// over the last step, and every input's linear continuation is no further from the
+    /// new input than the last value is (a ramp, or the sine of a time table away from its
+    /// turning points; not a jump after a constant, nor the stop of a ramp). `blocks`: the
+    /// last two solves' blocks (see `solve_in_plane`). Returns whether it applied.
+    fn predict_trend(&mut self, x: &mut [f64], blocks: &[f64], cage_angle: f64, now: &[f64; WARM_INPUTS]) -> bool {
+        if !self.spatial_applies() {
+            return false;
+        }
+        let n = x.len();
+        let block = n + 1 + WARM_INPUTS;
+        let (last, before) = (&blocks[..block], &blocks[block..2 * block]);
+        let wrap = |a: f64| a - TAU * round_int(a / TAU);
+        let d = cage_angle - last[n];
+        let d1 = last[n] - before[n];
+        let pitch = TAU / self.geometry.z as f64;
+        if !(wrap(d - d1).abs() <= 1e-9 * pitch) {
+            return false;
+        }
+        let (u, u1) = (&last[n + 1..block], &before[n + 1..block]);
+        let mut changed = false;
+        for i in 0..WARM_INPUTS {
+            let step = now[i] - u[i];
+            let prior = u[i] - u1[i];
+            if !((step - prior).abs() <= step.abs() + 1e-12 * now[i].abs().max(1.0)) {
+                return false;
+            }
+            changed |= prior != 0.0;
+        }
+        if !changed || !before[..n].iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        // the solve before the last at the new azimuths, in the step buffer (free until the
+        // first Newton step)
+        let mut older = std::mem::take(&mut self.step);
+        older[..3].copy_from_slice(&before[..3]);
+        spatial_interpolate(self.geometry.z, cage_angle - before[n], &before[..n], &mut older[..n]);
+        for i in 0..n {
+            x[i] += x[i] - older[i];
+        }
+        self.step = older;
+        true
+    }
+
+    /// Damped Newton from `x` (`predicted`: a warm start's prediction, whose unbalanced
+    /// rollers are first relaxed onto the cone, see `relax_unbalanced_rollers`).
+    #[allow(clippy::too_many_arguments)]
     fn newton(
         &mut self,
         x: &mut [f64],
@@ -1348,6 +1478,7 @@ impl QuasiStatic {
         m_req: f64,
         tol: f64,
         prescribed: [Option<f64>; 3],
+        predicted: bool,
     ) -> Result<SolveReport, ModelError> {
         for (c, v) in prescribed.iter().enumerate() {
             if let Some(v) = v {
@@ -1371,6 +1502,10 @@ impl QuasiStatic {
         let (mut max_r, mut merit, mut f_ref, mut ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
         if self.seat_free_rollers(x, fc) {
             (max_r, merit, f_ref, ring) = self.evaluate(x, inputs, fc, m_fc, m_req);
+        }
+        if predicted && max_r > tol * f_ref && self.relax_unbalanced_rollers(x, fc, m_fc, m_req, max_r) {
+            ring = self.ring_residual(x, inputs);
+            (max_r, merit, f_ref) = self.norms(&ring, inputs, fc);
         }
         let mut iterations = 0;
         let mut history = [0.0_f64; 4];
@@ -1411,7 +1546,15 @@ impl QuasiStatic {
                 for i in 0..x.len() {
                     trial[i] = x[i] + alpha * self.step[i];
                 }
-                let (mr, me, fr, rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
+                let (mut mr, mut me, mut fr, mut rg) = self.evaluate(&trial, inputs, fc, m_fc, m_req);
+                // A full step the merit rejects: where it presses the cone into a roller the
+                // step left in place (a roller the cone did not touch, so the linear model did
+                // not move it), that roller alone takes its own steps at the trial point first
+                // (`relax_unbalanced_rollers`) instead of the whole step being cut down.
+                if alpha == 1.0 && !(me <= merit || me < allowed) && self.relax_unbalanced_rollers(&mut trial, fc, m_fc, m_req, mr) {
+                    rg = self.ring_residual(&trial, inputs);
+                    (mr, me, fr) = self.norms(&rg, inputs, fc);
+                }
                 if me <= merit || (me < allowed && alpha == 1.0) || alpha < 1e-3 {
                     x.copy_from_slice(&trial);
                     max_r = mr;
