@@ -291,7 +291,8 @@ fn dump() {
 
 /// Newton iterations per step in a smooth time table: every preset's combined case with the
 /// radial load varying as Fy (1 + 0.2 sin(2 pi t / 0.1 s)) and, for the deflected case, xi
-/// as 0.004 deg (1 + 0.2 sin(...)), 1 ms steps, 300 steps after 10.
+/// as 0.004 deg (1 + 0.2 sin(...)), 1 ms steps, 300 steps after 10; with QS_SMOOTH_SPEED set,
+/// the shaft speed too.
 #[test]
 #[ignore]
 fn smooth() {
@@ -303,6 +304,10 @@ fn smooth() {
         let mut s = build(p, fy, xi, l);
         let fy0 = s.inputs().fy;
         let xi0 = s.inputs().xi;
+        let speed0 = s.inputs().speed;
+        // QS_SMOOTH_SPEED: the shaft speed follows the same table (the friction table is
+        // rebuilt at every new speed)
+        let vary_speed = std::env::var_os("QS_SMOOTH_SPEED").is_some();
         let mut its = Vec::new();
         let mut times = Vec::new();
         for k in 0..300 {
@@ -310,6 +315,9 @@ fn smooth() {
             let f = 1.0 + 0.2 * (std::f64::consts::TAU * t / 0.1).sin();
             s.set_real(var::FY, fy0 * f).unwrap();
             s.set_real(var::XI, xi0 * f).unwrap();
+            if vary_speed {
+                s.set_real(var::SPEED, speed0 * f).unwrap();
+            }
             let t0 = Instant::now();
             s.do_step(t, H).unwrap();
             times.push(t0.elapsed().as_secs_f64());

@@ -176,8 +176,10 @@ impl LineLanes {
 /// [`SliceConst`] of both raceways at one speed.
 #[derive(Debug, Clone, Default)]
 struct SpeedCache {
-    /// |speed| these were computed for (NaN: none yet).
+    /// |speed| the slice constants were computed for (NaN: none yet).
     speed: f64,
+    /// |speed| the tables were built for (NaN: none yet).
+    table_speed: f64,
     cone: Vec<SliceConst>,
     cup: Vec<SliceConst>,
     cone_lanes: LineLanes,
@@ -277,6 +279,7 @@ impl FrictionModel {
             lubricant: p.lubricant(g.e_prime),
             cache: SpeedCache {
                 speed: f64::NAN,
+                table_speed: f64::NAN,
                 ..SpeedCache::default()
             },
             halley: p.fidelity == crate::model::Fidelity::QuasiStatic,
@@ -507,6 +510,35 @@ impl FrictionModel {
         }
     }
 
+    /// [`FrictionModel::raceway_sliced`] (Halley) with the laws in lanes: four slices at a
+    /// time where the CPU has AVX2, else two (`friction_lanes.rs`); other architectures: the
+    /// scalar laws.
+    fn raceway_direct_fast(
+        &self,
+        line: &ContactLine,
+        weights: &SliceWeights,
+        consts: &[SliceConst],
+        lanes: &LineLanes,
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        #[cfg(target_arch = "x86_64")]
+        {
+            let _ = weights;
+            if self.four_lanes {
+                // SAFETY: `four_lanes` is set only where the CPU has AVX2 (`FrictionModel::new`).
+                unsafe { lanes4::raceway_direct_avx2(self, line, consts, lanes, loads, speed) }
+            } else {
+                lanes2::raceway_direct_lanes(self, line, consts, lanes, loads, speed)
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let _ = lanes;
+            self.raceway_sliced::<true>(line, weights, consts, loads, speed)
+        }
+    }
+
     /// [`FrictionModel::raceway_sliced`] straight from the laws (at standstill).
     fn raceway_sliced_generic(&self, line: &ContactLine, weights: &SliceWeights, loads: &[f64], speed: f64) -> RacewayFriction {
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
@@ -608,6 +640,7 @@ impl FrictionModel {
         inputs: &Inputs,
         lubrication: Lubrication,
         slice_loads: &[f64],
+        speed_held: bool,
         out: &mut Outputs,
     ) -> TorqueParts {
         let speed = inputs.relative_speed();
@@ -624,19 +657,26 @@ impl FrictionModel {
                 self.slice_consts(&g.cup, &self.cup_weights, speed.abs(), &mut cache.cup);
                 cache.cone_lanes.fill(&cache.cone, &self.cone_weights);
                 cache.cup_lanes.fill(&cache.cup, &self.cup_weights);
-                cache.raceways.reset(2 * ns);
-                cache.flange.reset(1);
             } else {
                 cache.cone.clear();
                 cache.cup.clear();
             }
+        }
+        // The tables serve a speed held since the last solve; a speed that changes every step
+        // would rebuild them every step (a full film solve per node, four nodes per cell), so
+        // there the laws are evaluated slice by slice.
+        let tabulate = self.halley && speed_held && speed != 0.0;
+        if sliced && tabulate && cache.table_speed.to_bits() != speed.abs().to_bits() {
+            cache.table_speed = speed.abs();
+            cache.raceways.reset(2 * ns);
+            cache.flange.reset(1);
         }
         for (j, e) in evals.iter().enumerate().take(evaluated) {
             // slice_loads: per roller, the cone's slices then the cup's
             let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
             let (cone, cup) = if sliced {
                 let (cone, cup) = (&loads[..ns], &loads[ns..]);
-                if self.halley && !cache.cone.is_empty() {
+                if tabulate && !cache.cone.is_empty() {
                     (
                         self.raceway_tabulated_fast(
                             &g.cone,
@@ -658,6 +698,11 @@ impl FrictionModel {
                             cup,
                             speed,
                         ),
+                    )
+                } else if self.halley && !cache.cone.is_empty() {
+                    (
+                        self.raceway_direct_fast(&g.cone, &self.cone_weights, &cache.cone, &cache.cone_lanes, cone, speed),
+                        self.raceway_direct_fast(&g.cup, &self.cup_weights, &cache.cup, &cache.cup_lanes, cup, speed),
                     )
                 } else if self.halley {
                     (
@@ -714,7 +759,7 @@ impl FrictionModel {
                                         self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                     };
                                     // the table exists at this speed when the raceways' does
-                                    let read = (sliced && speed != 0.0)
+                                    let read = (sliced && tabulate)
                                         .then(|| cache.flange.get(0, qf, |q| [fm::ln(law(q) / q), 0.0]))
                                         .flatten();
                                     read.map_or_else(|| law(qf), |v| fm::exp(v[0]) * qf)
@@ -771,7 +816,8 @@ fn four_lanes_available() -> bool {
 mod lanes2 {
     use super::*;
     use crate::quasi_static::load_table::{LN_FIRST as LOAD_GRID_FIRST, NODES as LOAD_GRID_NODES, STEP as LOAD_GRID_STEP};
-    use crate::simd_math::{exp, ln, F2 as F};
+    use crate::simd_math::{exp, ln, F2 as F, M2 as M};
+    use crate::tribology::pair::x2 as pair;
     include!("friction_lanes.rs");
 }
 
@@ -781,7 +827,8 @@ mod lanes2 {
 mod lanes4 {
     use super::*;
     use crate::quasi_static::load_table::{LN_FIRST as LOAD_GRID_FIRST, NODES as LOAD_GRID_NODES, STEP as LOAD_GRID_STEP};
-    use crate::simd_math::x4::{exp, ln, F4 as F};
+    use crate::simd_math::x4::{exp, ln, F4 as F, M4 as M};
+    use crate::tribology::pair::x4 as pair;
     include!("friction_lanes.rs");
 
     /// `raceway_tabulated_lanes` in four lanes, compiled for AVX2.
@@ -801,6 +848,22 @@ mod lanes4 {
         speed: f64,
     ) -> RacewayFriction {
         raceway_tabulated_lanes(model, line, consts, lanes, table, first, loads, speed)
+    }
+
+    /// `raceway_direct_lanes` in four lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU has AVX2 (`simd_math::x4::available`).
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn raceway_direct_avx2(
+        model: &FrictionModel,
+        line: &ContactLine,
+        consts: &[SliceConst],
+        lanes: &LineLanes,
+        loads: &[f64],
+        speed: f64,
+    ) -> RacewayFriction {
+        raceway_direct_lanes(model, line, consts, lanes, loads, speed)
     }
 }
 
@@ -873,15 +936,17 @@ mod tests {
         }
     }
 
-    /// The lane read of the friction table (`friction_lanes.rs`) against the scalar read, every
-    /// preset, both raceways, lines of slice loads that mix unloaded slices, loads below the
-    /// table's grid, ordinary loads and loads above its pressure limit: the same friction to
-    /// rounding (the logarithm and exponential round differently, the sums are added in
-    /// another order), and two lanes and four lanes the same bits.
+    /// The lane read of the friction table (`friction_lanes.rs`) against the scalar read, and
+    /// the laws in lanes against the scalar laws, every preset, both raceways, lines of slice
+    /// loads that mix unloaded slices, loads below the table's grid, ordinary loads and loads
+    /// above its pressure limit: the same friction to rounding (the logarithm and exponential
+    /// round differently, the sums are added in another order; the film equation's iteration
+    /// may stop a step apart, within its 1e-9 step rule), and two lanes and four lanes the
+    /// same bits.
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn the_lane_read_gives_the_scalar_read() {
-        let mut lines = 0;
+        let (mut lines, mut worst_direct) = (0, 0.0_f64);
         for name in ["TRB130x230", "32018X", "32008", "CRB-TRILOBE"] {
             let b = Bearing::preset(name).unwrap();
             let p = Parameters::from_bearing(&b);
@@ -921,11 +986,24 @@ mod tests {
                             && close(two.slide_force, scalar.slide_force)
                             && close(two.rolling, scalar.rolling);
                         assert!(agree, "{name} {case}: {two:?} vs {scalar:?}");
+                        // the laws themselves in lanes against the scalar laws
+                        let laws = fr.raceway_sliced::<true>(line, weights, &consts, &loads, sp);
+                        let direct = lanes2::raceway_direct_lanes(fr, line, &consts, &lanes, &loads, sp);
+                        let near = |a: f64, b: f64| (a - b).abs() <= 1e-11 * b.abs();
+                        let agree = near(direct.torque, laws.torque)
+                            && near(direct.skew, laws.skew)
+                            && near(direct.slide_force, laws.slide_force)
+                            && near(direct.rolling, laws.rolling);
+                        assert!(agree, "{name} {case}: {direct:?} vs {laws:?}");
+                        worst_direct = worst_direct.max((direct.torque / laws.torque - 1.0).abs());
                         if crate::simd_math::x4::available() {
                             // SAFETY: the CPU has AVX2 (checked)
                             let four = unsafe { lanes4::raceway_tabulated_avx2(fr, line, &consts, &lanes, &mut table, first, &loads, sp) };
                             let bits = |f: &RacewayFriction| [f.torque, f.skew, f.slide_force, f.rolling].map(f64::to_bits);
                             assert_eq!(bits(&four), bits(&two), "{name} {case}");
+                            // SAFETY: as above
+                            let four = unsafe { lanes4::raceway_direct_avx2(fr, line, &consts, &lanes, &loads, sp) };
+                            assert_eq!(bits(&four), bits(&direct), "{name} {case}");
                         }
                     }
                     lines += 1;
@@ -933,5 +1011,6 @@ mod tests {
             }
         }
         assert_eq!(lines, 4 * 2 * 40);
+        eprintln!("the laws in lanes: friction torque within {worst_direct:.1e} of the scalar laws");
     }
 }

@@ -1257,7 +1257,10 @@ impl QuasiStatic {
                 }
             }
         };
-        self.write_outputs(&x, inputs, report, out);
+        // the speeds of the last solve, from its block of the warm start (part of the FMU
+        // state, so a restored state decides as the original did)
+        let speed_held = warm.len() >= block && warm[n + 1] == now[0] && warm[n + 1 + 10] == now[10];
+        self.write_outputs(&x, inputs, report, speed_held, out);
         if warm.len() == full {
             // this solve's block becomes the previous one
             warm.copy_within(0..block, block);
@@ -1663,7 +1666,9 @@ impl QuasiStatic {
         ModelError::NoEquilibrium { message }
     }
 
-    fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, out: &mut Outputs) {
+    /// The outputs at the solution `x`; `speed_held`: the shaft speeds are those of the last
+    /// solve (the friction tables serve them).
+    fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, speed_held: bool, out: &mut Outputs) {
         let z = self.geometry.z;
         let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for j in 0..z {
@@ -1715,6 +1720,7 @@ impl QuasiStatic {
             inputs,
             self.params.lubrication,
             &self.slice_load_buffer,
+            speed_held,
             out,
         );
         out.friction_torque_raceway = torque.raceway;
