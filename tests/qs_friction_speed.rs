@@ -79,3 +79,18 @@ fn laws_and_table_agree_at_the_same_speed() {
         assert!(rel > 0.0, "{preset}: the second step did not read the table");
     }
 }
+
+/// Held inputs from the start read the table from the first solve on: under pure axial load
+/// (every step the same equilibrium) the friction torque is the same at every step, the
+/// initial solve's included (a first solve counts as a held speed).
+#[test]
+fn a_held_speed_reads_the_table_from_the_first_solve() {
+    for preset in ["TRB130x230", "32008"] {
+        let mut s = element(preset, 0.0);
+        let first = s.last_outputs().friction_torque;
+        for k in 0..5 {
+            s.do_step(k as f64 * H, H).unwrap();
+            assert_eq!(s.last_outputs().friction_torque.to_bits(), first.to_bits(), "{preset}, step {k}");
+        }
+    }
+}

@@ -1258,8 +1258,9 @@ impl QuasiStatic {
             }
         };
         // the speeds of the last solve, from its block of the warm start (part of the FMU
-        // state, so a restored state decides as the original did)
-        let speed_held = warm.len() >= block && warm[n + 1] == now[0] && warm[n + 1 + 10] == now[10];
+        // state, so a restored state decides as the original did); a first solve counts as
+        // held, so that constant inputs read the table from the start
+        let speed_held = warm.len() < block || (warm[n + 1] == now[0] && warm[n + 1 + 10] == now[10]);
         self.write_outputs(&x, inputs, report, speed_held, out);
         if warm.len() == full {
             // this solve's block becomes the previous one
