@@ -1,6 +1,6 @@
-// `FrictionModel::raceway_tabulated` and `raceway_sliced` in lanes, written once for the lane types `F`, `M` and
-// their `ln` and `exp`, and included in `friction::lanes2` (two lanes, SSE2) and
-// `friction::lanes4` (four, AVX2).
+// `FrictionModel::raceway_tabulated` and `raceway_sliced` in lanes, written once for the lane
+// types `F`, `M` and their `ln` and `exp`, and included in `friction::lanes2` (two lanes,
+// SSE2) and `friction::lanes4` (four, AVX2).
 
 /// [`FrictionModel::raceway_tabulated`] `F::N` slices at a time: the logarithm of each load,
 /// its place on the table's grid, the four-node interpolation of ln(traction coefficient) and
@@ -57,53 +57,51 @@ fn read_table(
     q: F,
     live: M,
 ) -> (F, F) {
-    {
-        let zero = F::splat(0.0);
-        // the table's lanes: sliding, within its load range, on its grid
-        let table_max = F::load(&lanes.table_max[k..]);
-        let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
-        let read = live & q.le(table_max) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
-        let read_bits = read.bits();
-        let (whole, cell) = x.trunc_i32();
-        let t = x - whole;
-        // the nodes (node n, function c at offset 2 n + c from a lane's first node; lanes
-        // that are not read point at the start), computed where missing
-        let start: [usize; F::N] = std::array::from_fn(|i| {
-            if read_bits & (1 << i) != 0 {
-                2 * ((first + idx[i]) * LOAD_GRID_NODES + cell[i] as usize - 1)
-            } else {
-                0
-            }
-        });
-        let mut v = gather_nodes(table.flat(), start);
-        let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
-        if missing.any() {
-            let bits = missing.bits();
-            for i in 0..F::N {
-                if bits & (1 << i) != 0 {
-                    let (c, r_bar) = (&consts[idx[i]], line.r_bar[idx[i]]);
-                    table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
-                }
-            }
-            v = gather_nodes(table.flat(), start);
+    let zero = F::splat(0.0);
+    // the table's lanes: sliding, within its load range, on its grid
+    let table_max = F::load(&lanes.table_max[k..]);
+    let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
+    let read = live & q.le(table_max) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
+    let read_bits = read.bits();
+    let (whole, cell) = x.trunc_i32();
+    let t = x - whole;
+    // the nodes (node n, function c at offset 2 n + c from a lane's first node; lanes
+    // that are not read point at the start), computed where missing
+    let start: [usize; F::N] = std::array::from_fn(|i| {
+        if read_bits & (1 << i) != 0 {
+            2 * ((first + idx[i]) * LOAD_GRID_NODES + cell[i] as usize - 1)
+        } else {
+            0
         }
-        // `LoadTable::weights`, lane by lane the same operations
-        let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-        let w = [
-            -t * t1 * t2 * (1.0 / 6.0),
-            tm * t1 * t2 * 0.5,
-            -tm * t * t2 * 0.5,
-            tm * t * t1 * (1.0 / 6.0),
-        ];
-        let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
-        let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
-        let ok = read & finite(ln_mu) & finite(ln_roll);
-        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
-        let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
-        let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
-        // the lanes the table does not serve: the laws themselves
-        scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
+    });
+    let mut v = gather_nodes(table.flat(), start);
+    let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
+    if missing.any() {
+        let bits = missing.bits();
+        for i in 0..F::N {
+            if bits & (1 << i) != 0 {
+                let (c, r_bar) = (&consts[idx[i]], line.r_bar[idx[i]]);
+                table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
+            }
+        }
+        v = gather_nodes(table.flat(), start);
     }
+    // `LoadTable::weights`, lane by lane the same operations
+    let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
+    let w = [
+        -t * t1 * t2 * (1.0 / 6.0),
+        tm * t1 * t2 * 0.5,
+        -tm * t * t2 * 0.5,
+        tm * t * t1 * (1.0 / 6.0),
+    ];
+    let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
+    let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
+    let ok = read & finite(ln_mu) & finite(ln_roll);
+    let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+    let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
+    let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
+    // the lanes the table does not serve: the laws themselves
+    scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
 }
 
 /// [`FrictionModel::raceway_sliced`] (Halley) with the laws themselves in lanes: per slice its
@@ -138,39 +136,37 @@ fn slice_laws(model: &FrictionModel, line: &ContactLine, consts: &[SliceConst], 
     let lub = &model.lubricant;
     let e_prime = lub.e_prime;
     let slice_len = model.slice_len;
-    {
-        let zero = F::splat(0.0);
-        let one = F::splat(1.0);
-        let per = |f: fn(&SliceConst) -> f64| F::from_fn(|i| f(&consts[idx[i]]));
-        let (u_e, v_s) = (per(|c| c.u_e), per(|c| c.v_s));
-        let regular = live & u_e.gt(zero) & v_s.gt(zero);
-        let q = regular.select(q, one);
-        let (u_e, v_s) = (regular.select(u_e, one), regular.select(v_s, one));
-        let r_bar = F::from_fn(|i| line.r_bar[idx[i]]);
-        // contact::line_contact_half_width, the mean pressure
-        let w = q / F::splat(slice_len);
-        let b = (8.0 * w * r_bar / (PI * e_prime)).sqrt();
-        let p_mean = w / (2.0 * b);
-        let p_h = 4.0 / PI * p_mean;
-        // FrictionModel::heating
-        let heated = per(|c| if c.heated { 1.0 } else { 0.0 }).gt(zero);
-        let num = 1.0 - 13.2 * (p_h / e_prime) * per(|c| c.l042);
-        let heating = heated.select((num / per(|c| c.heat_den)).max(F::splat(tr::film::MIN_THERMAL_FACTOR)), one);
-        // the film W^-0.166 law, its logarithm
-        let ln_w_er = ln(w / per(|c| c.e_r));
-        let h = heating * (per(|c| c.film_a) * exp(-0.166 * ln_w_er));
-        let ln_h = ln(h);
-        let ln_vs = per(|c| c.ln_vs);
-        let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
-        ok = ok & pair::exp_range(-0.166 * ln_w_er);
-        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
-        let ln_qr = ln(q / per(|c| c.e_r_l));
-        ok = ok & (!rolls | pair::exp_range(0.246 * ln_qr));
-        let rolling = rolls.select(heating * (per(|c| c.roll_a) * exp(rolls.select(0.246 * ln_qr, zero)) * slice_len), zero);
-        let ok = regular & ok & finite(mu) & finite(rolling);
-        let (mu, rolling) = (ok.select(mu, zero), ok.select(rolling, zero));
-        scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
-    }
+    let zero = F::splat(0.0);
+    let one = F::splat(1.0);
+    let per = |f: fn(&SliceConst) -> f64| F::from_fn(|i| f(&consts[idx[i]]));
+    let (u_e, v_s) = (per(|c| c.u_e), per(|c| c.v_s));
+    let regular = live & u_e.gt(zero) & v_s.gt(zero);
+    let q = regular.select(q, one);
+    let (u_e, v_s) = (regular.select(u_e, one), regular.select(v_s, one));
+    let r_bar = F::from_fn(|i| line.r_bar[idx[i]]);
+    // contact::line_contact_half_width, the mean pressure
+    let w = q / F::splat(slice_len);
+    let b = (8.0 * w * r_bar / (PI * e_prime)).sqrt();
+    let p_mean = w / (2.0 * b);
+    let p_h = 4.0 / PI * p_mean;
+    // FrictionModel::heating
+    let heated = per(|c| if c.heated { 1.0 } else { 0.0 }).gt(zero);
+    let num = 1.0 - 13.2 * (p_h / e_prime) * per(|c| c.l042);
+    let heating = heated.select((num / per(|c| c.heat_den)).max(F::splat(tr::film::MIN_THERMAL_FACTOR)), one);
+    // the film W^-0.166 law, its logarithm
+    let ln_w_er = ln(w / per(|c| c.e_r));
+    let h = heating * (per(|c| c.film_a) * exp(-0.166 * ln_w_er));
+    let ln_h = ln(h);
+    let ln_vs = per(|c| c.ln_vs);
+    let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
+    ok = ok & pair::exp_range(-0.166 * ln_w_er);
+    let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+    let ln_qr = ln(q / per(|c| c.e_r_l));
+    ok = ok & (!rolls | pair::exp_range(0.246 * ln_qr));
+    let rolling = rolls.select(heating * (per(|c| c.roll_a) * exp(rolls.select(0.246 * ln_qr, zero)) * slice_len), zero);
+    let ok = regular & ok & finite(mu) & finite(rolling);
+    let (mu, rolling) = (ok.select(mu, zero), ok.select(rolling, zero));
+    scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
 }
 
 /// What the slice loop of both lane reads asks per group of slices: (traction coefficient,
