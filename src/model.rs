@@ -456,6 +456,19 @@ impl Inputs {
         }
     }
 
+    /// Whether, as rates (`ramped`), these change an input the contacts see directly: a ring
+    /// speed, a prescribed displacement or the misalignment. Those move the contact slips and
+    /// deflections themselves, so their time derivative drives the stiff contact modes;
+    /// loads act on the cone's mass and the oil temperature is held over a step.
+    pub fn moves_contacts(&self) -> bool {
+        self.speed != 0.0
+            || self.cup_speed != 0.0
+            || self.xi != 0.0
+            || self.zeta != 0.0
+            || self.axial_displacement != 0.0
+            || self.displacement.iter().any(|d| *d != 0.0)
+    }
+
     /// Speed of the cone relative to the cup (rad/s). Seen from the cup, a bearing with both
     /// rings turning is one with a standing cup and the cone at this speed: the rolling and
     /// sliding speeds, the traction and the friction follow it alone; only the inertial

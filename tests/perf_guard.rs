@@ -115,6 +115,31 @@ fn rosenbrock_work_with_ramped_inputs() {
 }
 
 #[test]
+fn rosenbrock_work_in_a_run_up_from_rest_with_the_speed_ramped() {
+    // the first 0.2 ms of the [W25] run-up (0 -> 3500 rpm in 20 ms, Fa 30 kN) in one step,
+    // the speed ramped by the master's input derivative: the stages take df/dt (before:
+    // 7032 RHS, steps near 50 ns against the regularised friction of near-standstill)
+    let mut s = Simulation::new(Bearing::default_preset());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.set_integer(var::INTEGRATOR, 2).unwrap();
+    s.set_real(var::TOLERANCE, 1e-5).unwrap();
+    s.set_real(var::SPEED, 0.0).unwrap();
+    s.initialize(0.0).unwrap();
+    s.set_real_derivative(var::SPEED, 3500.0 * std::f64::consts::TAU / 60.0 / 0.02)
+        .unwrap();
+    s.do_step(0.0, 2e-4).unwrap();
+    let o = s.last_outputs();
+    // the rollers stick and roll: the torque that accelerates them (119.2 N m in a
+    // Dormand-Prince run at tolerance 1e-9), not gross slip
+    assert!((o.friction_torque - 119.2).abs() < 1.0, "{}", o.friction_torque);
+    check(
+        "Rosenbrock tol 1e-5, run-up from rest, 0.2 ms, RHS",
+        o.integrator_rhs,
+        BASE_ROS_RUN_UP,
+    );
+}
+
+#[test]
 fn gill_milne_hamming_work_is_fixed_by_the_step() {
     // fixed step: 1 ms / 2 us = 500 steps, two evaluations per step plus the start
     let (steps, rhs, rejected) = dynamic_counts(1, 2e-6, 0.0, 10, 1e-4);
@@ -163,6 +188,8 @@ const BASE_AUTO_JUMPS: i32 = 4218;
 /// with ramped loads (`tests/input_interpolation.rs`): 4833 RHS, against 20553 held.
 const BASE_DEFAULT: (i32, i32) = (60, 265);
 const BASE_ROS_RAMPED: i32 = 4833;
+/// Session 26 (2026-11-25), df/dt in the Rosenbrock-W stages.
+const BASE_ROS_RUN_UP: i32 = 2509;
 /// 500 steps x 2 evaluations (predictor-corrector) + the Gill start.
 const BASE_GMH_RHS: i32 = 1007;
 /// About 1 Newton iteration per step while the azimuth table of the warm start fills (its

@@ -46,6 +46,12 @@ pub trait BlockSystem {
     /// The derivative at time `t` (the inputs may ramp over the interval) and state `y`.
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
     fn shares(&self, out: &mut [f64]);
+    /// Whether the right-hand side changes in time so that its time derivative drives stiff
+    /// modes (inputs the contacts see directly, ramped over the interval): the Rosenbrock
+    /// stages then take df/dt.
+    fn stiffly_time_dependent(&self) -> bool {
+        false
+    }
 }
 
 impl BlockJacobian {

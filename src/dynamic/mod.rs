@@ -216,6 +216,9 @@ struct Model<'a> {
 }
 
 impl BlockSystem for Model<'_> {
+    fn stiffly_time_dependent(&self) -> bool {
+        self.ramp.is_some_and(|(_, rates)| rates.moves_contacts())
+    }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         match self.ramp {
             None => self.eval.run(self.g, self.p, self.c, self.inputs, y, Some(dy)),
@@ -428,7 +431,9 @@ impl Dynamic {
         // interval: one from other inputs hides errors behind the filtered error estimate. In
         // the [W25] run-up with the speed ramped at tolerance 1e-4, a Jacobian kept from
         // standstill held the cage stuck until 11 ms instead of 0.7 ms (skew error 390 %;
-        // refreshed at every interval: 4 %; at 1e-5 9e-4 either way).
+        // refreshed at every interval: 4 %; at 1e-5 9e-4 either way). The stages' df/dt
+        // (session 26) does not make this refresh redundant: without it the same run at 1e-4
+        // kept the cage stuck until 10 ms again (torque/skew error 370 %).
         if jumped || rates.is_some() {
             if let Integrator::Rosenbrock(_) | Integrator::Automatic { .. } = self.ig {
                 rosenbrock::mark_jacobian_stale(&mut state.memory);
