@@ -18,9 +18,11 @@
 //! the stiff contact slips through the right-hand side alone: in the [W25] run-up with the
 //! speed ramped, where the regularised friction of near-standstill has rates of 1.5e8 1/s,
 //! the steps stayed near 50 ns for the first microseconds (the first 0.2 ms: 7032
-//! right-hand sides; with df/dt 2509; the whole 20 ms 14660 → 10199 at tolerance 1e-5 with
-//! the error 5.6e-4 → 4.0e-4). Loads act on the cone's mass, and held inputs leave the
-//! right-hand side autonomous: nothing changes there.
+//! right-hand sides; with df/dt 2493). Loads act on the cone's mass, and held inputs leave
+//! the right-hand side autonomous: nothing changes there. While such inputs ramp, a Jacobian
+//! serves at most [`RAMPED_MAX_AGE`] steps (the run-up over 20 ms, torque/skew error against
+//! Dormand-Prince at 1e-9, before → after: tolerance 1e-3 0.38 → 1.5e-2, 1e-4 0.38 → 6.7e-4
+//! in 7397 right-hand sides, 1e-5 5.6e-4 → 1.9e-4 in 14660 → 13649).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
@@ -135,6 +137,14 @@ fn memory_len(z: usize) -> usize {
     HEADER + BlockJacobian::len(z)
 }
 const HEADER: usize = 2;
+
+/// Accepted steps a Jacobian serves at most while ramped inputs move the contacts. The
+/// filtered error estimate cannot see an error that a stale Jacobian makes: in the [W25]
+/// run-up with the speed ramped from rest at tolerance 1e-4, the Jacobian of standstill
+/// served ten steps and carried the rollers into gross slip unnoticed (friction torque 989
+/// instead of 170 N m at 10 us; over the 20 ms a torque/skew error of 38 % at tolerances 1e-4
+/// and 1e-3). With 4: 6.7e-4 and 1.5e-2, and 1.9e-4 at 1e-5 (8: 5.1e-3 at 1e-4).
+const RAMPED_MAX_AGE: u64 = 4;
 
 impl RosenbrockW {
     pub fn new(z: usize, atol: Vec<f64>, rtol: Vec<f64>, scale: Vec<f64>, global_active: [bool; NG], max_step: f64) -> RosenbrockW {
@@ -363,7 +373,12 @@ impl RosenbrockW {
             if steps_here >= self.step_budget {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
             }
-            if memory[0] as u64 >= self.max_age || (self.turned_too_far(y, memory) && !self.follow_by_pitches(y, memory)) {
+            let max_age = if time_dependent {
+                self.max_age.min(RAMPED_MAX_AGE)
+            } else {
+                self.max_age
+            };
+            if memory[0] as u64 >= max_age || (self.turned_too_far(y, memory) && !self.follow_by_pitches(y, memory)) {
                 self.refresh_jacobian(sys, *t, y, counters, memory);
             }
             if time_dependent && !time_derivative_fresh {
@@ -632,11 +647,13 @@ mod tests {
         let stuck = -EPS / 3f64.sqrt();
         let (with, c_with) = run(true);
         let (without, c_without) = run(false);
-        assert!((with - stuck).abs() < 0.01 * stuck.abs(), "{with} {stuck} {c_with:?}");
+        // both stuck (gross slip would leave the slip orders of magnitude larger), to about
+        // twenty times the absolute tolerance
+        assert!((with - stuck).abs() < 0.1 * stuck.abs(), "{with} {stuck} {c_with:?}");
         assert!((without - stuck).abs() < 0.1 * stuck.abs(), "{without} {stuck} {c_without:?}");
         // blind to df/dt, the W-method follows the ramp's forcing of the stiff mode only in
         // steps near 1 / slope
-        // (measured: 1421 steps and 25.7k right-hand sides against 70.8k and 1.08M)
+        // (measured: 1084 steps and 22.2k right-hand sides against 70.8k and 1.08M)
         assert!(c_with.steps < 3000, "{c_with:?}");
         assert!(c_without.rhs > 20 * c_with.rhs, "{c_with:?} {c_without:?}");
     }
