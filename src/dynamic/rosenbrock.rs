@@ -21,14 +21,15 @@
 //! right-hand sides; with df/dt 2493). Loads act on the cone's mass, and held inputs leave
 //! the right-hand side autonomous: nothing changes there. While such inputs ramp, a Jacobian
 //! serves at most [`RAMPED_MAX_AGE`] steps (the run-up over 20 ms, torque/skew error against
-//! Dormand-Prince at 1e-9, before → after: tolerance 1e-3 0.38 → 1.5e-2, 1e-4 0.38 → 6.7e-4
-//! in 7397 right-hand sides, 1e-5 5.6e-4 → 1.9e-4 in 14660 → 13649).
+//! Dormand-Prince at 1e-9, before → after: tolerance 1e-3 0.38 → 1.5e-2, 1e-4 0.38 → 6.6e-4
+//! in 6216 right-hand sides, 1e-5 5.6e-4 → 1.9e-4 in 14660 → 13289).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
-//! step, after `max_age` accepted steps, when the rollers have orbited a set angle since it was
+//! step, after `max_age` accepted steps ([`RAMPED_MAX_AGE`] while ramped inputs move the
+//! contacts), when the rollers have orbited a set angle since it was
 //! computed (`orbit`: the coupling blocks turn with the rollers' azimuths; identical rollers'
 //! blocks are renumbered by whole pitches first), and at the first step after the inputs
-//! changed ([`mark_jacobian_stale`]); the matrix is refactored whenever
+//! jumped ([`mark_jacobian_stale`]); the matrix is refactored whenever
 //! 1/(h gamma) changed (a stale alpha' is the W-method's W = J + (alpha - alpha') I: legal, but
 //! on the lightly damped contact modes it cost 30 % rejected steps and 100x the steps in a
 //! test), so the step is kept unless it should grow by more than 20 %, and each communication
@@ -109,7 +110,7 @@ pub struct RosenbrockW {
 }
 
 /// Make the Jacobian in the integrator memory `memory` (empty: none yet) due at the next step:
-/// the caller's inputs changed. The error estimate is filtered through the stage matrix, and
+/// the caller's inputs jumped. The error estimate is filtered through the stage matrix, and
 /// a Jacobian from other inputs filters the wrong modes: in a run-up from rest, one computed
 /// at low speed carries the stiff regularised friction of near-standstill and hid skew errors
 /// of 100 % and more at tolerances 1e-3 and 1e-4 (with the refresh: 0.9 % and 0.5 %, the
@@ -143,7 +144,9 @@ const HEADER: usize = 2;
 /// run-up with the speed ramped from rest at tolerance 1e-4, the Jacobian of standstill
 /// served ten steps and carried the rollers into gross slip unnoticed (friction torque 989
 /// instead of 170 N m at 10 us; over the 20 ms a torque/skew error of 38 % at tolerances 1e-4
-/// and 1e-3). With 4: 6.7e-4 and 1.5e-2, and 1.9e-4 at 1e-5 (8: 5.1e-3 at 1e-4).
+/// and 1e-3, with the Jacobian recomputed at every communication interval). With 4: 6.6e-4
+/// and 1.5e-2, and 1.9e-4 at 1e-5 (8: 5.1e-3 at 1e-4); the refresh at every interval is
+/// then redundant and gone.
 const RAMPED_MAX_AGE: u64 = 4;
 
 impl RosenbrockW {
