@@ -52,6 +52,12 @@ pub trait BlockSystem {
     fn stiffly_time_dependent(&self) -> bool {
         false
     }
+    /// Whether the system is near standstill, where the regularised friction's Jacobian
+    /// changes fastest (the Rosenbrock stages then keep a Jacobian for fewer steps while the
+    /// inputs ramp).
+    fn near_standstill(&self) -> bool {
+        false
+    }
 }
 
 impl BlockJacobian {

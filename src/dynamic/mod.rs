@@ -219,6 +219,13 @@ impl BlockSystem for Model<'_> {
     fn stiffly_time_dependent(&self) -> bool {
         self.ramp.is_some_and(|(_, rates)| rates.moves_contacts())
     }
+    /// The rings' relative surface speed at the pitch radius below 100 times the boundary
+    /// law's entrainment floor (4 m/s): there the boundary law's slope at zero sliding,
+    /// 40.4 / u_e, is still within a factor of 100 of its standstill value, and the slips of
+    /// a bearing starting up move through the regularisation's curved part.
+    fn near_standstill(&self) -> bool {
+        self.inputs.relative_speed().abs() * self.g.center[1] < 100.0 * crate::tribology::MIN_BOUNDARY_ENTRAINMENT
+    }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         match self.ramp {
             None => self.eval.run(self.g, self.p, self.c, self.inputs, y, Some(dy)),
