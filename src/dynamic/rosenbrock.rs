@@ -20,9 +20,10 @@
 //! the steps stayed near 50 ns for the first microseconds (the first 0.2 ms: 7032
 //! right-hand sides; with df/dt 2493). Loads act on the cone's mass, and held inputs leave
 //! the right-hand side autonomous: nothing changes there. While such inputs ramp near
-//! standstill, a Jacobian serves at most [`RAMPED_MAX_AGE`] steps (the run-up over 20 ms, torque/skew error against
-//! Dormand-Prince at 1e-9, before → after: tolerance 1e-3 0.38 → 1.9e-2, 1e-4 0.38 → 8.5e-4
-//! in 5981 right-hand sides, 1e-5 5.6e-4 → 1.9e-4 in 14660 → 9732).
+//! standstill, a Jacobian serves at most [`RAMPED_MAX_AGE`] steps (the run-up over 20 ms,
+//! torque/skew error against Dormand-Prince at 1e-9, before → after: tolerance 1e-3
+//! 0.38 → 1.9e-2, 1e-4 0.38 → 8.5e-4 in 5981 right-hand sides, 1e-5 5.6e-4 → 1.9e-4 in
+//! 14660 → 9732).
 //!
 //! Jacobian policy: computed at the first step, after a rejected step when older than that
 //! step, after `max_age` accepted steps ([`RAMPED_MAX_AGE`] while ramped inputs move the
@@ -145,11 +146,11 @@ const HEADER: usize = 2;
 /// run-up with the speed ramped from rest at tolerance 1e-4, the Jacobian of standstill
 /// served ten steps and carried the rollers into gross slip unnoticed (friction torque 989
 /// instead of 170 N m at 10 us; over the 20 ms a torque/skew error of 38 % at tolerances 1e-4
-/// and 1e-3, with the Jacobian recomputed at every communication interval). With 4: 6.6e-4
-/// and 1.5e-2, and 1.9e-4 at 1e-5 (8: 5.1e-3 at 1e-4); the refresh at every interval is
-/// then redundant and gone. Above standstill the cap only cost: held to 4 steps over the
-/// whole 20 ms the run-up took 13289 right-hand sides at 1e-5 instead of 9732, the error
-/// 1.9e-4 either way.
+/// and 1e-3, with the Jacobian recomputed at every communication interval). With 4: 8.5e-4
+/// and 1.9e-2, and 1.9e-4 at 1e-5 (a cap of 8 over the whole run: 5.1e-3 at 1e-4); the
+/// refresh at every interval is then redundant and gone. Above standstill the cap only
+/// cost: held to 4 steps over the whole 20 ms the run-up took 13289 right-hand sides at 1e-5
+/// instead of 9732, the error 1.9e-4 either way.
 const RAMPED_MAX_AGE: u64 = 4;
 
 impl RosenbrockW {
@@ -341,6 +342,11 @@ impl RosenbrockW {
         if !time_dependent {
             self.f_t.fill(0.0);
         }
+        let max_age = if time_dependent && sys.near_standstill() {
+            self.max_age.min(RAMPED_MAX_AGE)
+        } else {
+            self.max_age
+        };
         // df/dt at the current (t, y), where the inputs ramp: anew after every accepted step
         let mut time_derivative_fresh = false;
         // the factorisation is redone at every call (from the state alone)
@@ -379,11 +385,6 @@ impl RosenbrockW {
             if steps_here >= self.step_budget {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
             }
-            let max_age = if time_dependent && sys.near_standstill() {
-                self.max_age.min(RAMPED_MAX_AGE)
-            } else {
-                self.max_age
-            };
             if memory[0] as u64 >= max_age || (self.turned_too_far(y, memory) && !self.follow_by_pitches(y, memory)) {
                 self.refresh_jacobian(sys, *t, y, counters, memory);
             }
