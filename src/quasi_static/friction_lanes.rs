@@ -22,86 +22,87 @@ pub(super) fn raceway_tabulated_lanes(
     loads: &[f64],
     speed: f64,
 ) -> RacewayFriction {
-    struct Read<'a> {
-        model: &'a FrictionModel,
-        line: &'a ContactLine,
-        consts: &'a [SliceConst],
-        lanes: &'a LineLanes,
-        table: &'a mut LoadTable,
-        first: usize,
-    }
-    impl SliceLaws for Read<'_> {
-        #[inline(always)]
-        fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
-            let Read { model, line, consts, lanes, first, .. } = *self;
-            read_table(model, line, consts, lanes, self.table, first, k, idx, q, live)
-        }
-    }
-    let mut read = Read { model, line, consts, lanes, table, first };
+    let mut read = TableRead {
+        model,
+        line,
+        consts,
+        lanes,
+        table,
+        first,
+    };
     raceway_lanes(lanes, loads, speed, &mut read)
 }
 
-/// The table read of [`raceway_tabulated_lanes`] for slices `idx` (from `k`) with loads `q`,
-/// loaded where `live`.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn read_table(
-    model: &FrictionModel,
-    line: &ContactLine,
-    consts: &[SliceConst],
-    lanes: &LineLanes,
-    table: &mut LoadTable,
+/// The table read of [`raceway_tabulated_lanes`]: a raceway's line, its slices' constants and
+/// padded arrays, and its lines of the friction table (from line `first`).
+struct TableRead<'a> {
+    model: &'a FrictionModel,
+    line: &'a ContactLine,
+    consts: &'a [SliceConst],
+    lanes: &'a LineLanes,
+    table: &'a mut LoadTable,
     first: usize,
-    k: usize,
-    idx: [usize; F::N],
-    q: F,
-    live: M,
-) -> (F, F) {
-    let zero = F::splat(0.0);
-    // the table's lanes: sliding, within its load range, on its grid
-    let table_max = F::load(&lanes.table_max[k..]);
-    let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
-    let read = live & q.le(table_max) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
-    let read_bits = read.bits();
-    let (whole, cell) = x.trunc_i32();
-    let t = x - whole;
-    // the nodes (node n, function c at offset 2 n + c from a lane's first node; lanes
-    // that are not read point at the start), computed where missing
-    let start: [usize; F::N] = std::array::from_fn(|i| {
-        if read_bits & (1 << i) != 0 {
-            2 * ((first + idx[i]) * LOAD_GRID_NODES + cell[i] as usize - 1)
-        } else {
-            0
-        }
-    });
-    let mut v = gather_nodes(table.flat(), start);
-    let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
-    if missing.any() {
-        let bits = missing.bits();
-        for i in 0..F::N {
-            if bits & (1 << i) != 0 {
-                let (c, r_bar) = (&consts[idx[i]], line.r_bar[idx[i]]);
-                table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
+}
+
+impl SliceLaws for TableRead<'_> {
+    /// Slices `idx` (from `k`) with loads `q`, loaded where `live`.
+    #[inline(always)]
+    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
+        let TableRead {
+            model,
+            line,
+            consts,
+            lanes,
+            first,
+            ..
+        } = *self;
+        let table = &mut *self.table;
+        let zero = F::splat(0.0);
+        // the table's lanes: sliding, within its load range, on its grid
+        let table_max = F::load(&lanes.table_max[k..]);
+        let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
+        let read = live & q.le(table_max) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
+        let read_bits = read.bits();
+        let (whole, cell) = x.trunc_i32();
+        let t = x - whole;
+        // the nodes (node n, function c at offset 2 n + c from a lane's first node; lanes
+        // that are not read point at the start), computed where missing
+        let start: [usize; F::N] = std::array::from_fn(|i| {
+            if read_bits & (1 << i) != 0 {
+                2 * ((first + idx[i]) * LOAD_GRID_NODES + cell[i] as usize - 1)
+            } else {
+                0
             }
+        });
+        let mut v = gather_nodes(table.flat(), start);
+        let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
+        if missing.any() {
+            let bits = missing.bits();
+            for i in 0..F::N {
+                if bits & (1 << i) != 0 {
+                    let (c, r_bar) = (&consts[idx[i]], line.r_bar[idx[i]]);
+                    table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
+                }
+            }
+            v = gather_nodes(table.flat(), start);
         }
-        v = gather_nodes(table.flat(), start);
+        // `LoadTable::weights`, lane by lane the same operations
+        let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
+        let w = [
+            -t * t1 * t2 * (1.0 / 6.0),
+            tm * t1 * t2 * 0.5,
+            -tm * t * t2 * 0.5,
+            tm * t * t1 * (1.0 / 6.0),
+        ];
+        let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
+        let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
+        let ok = read & finite(ln_mu) & finite(ln_roll);
+        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+        let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
+        let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
+        // the lanes the table does not serve: the laws themselves
+        scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
     }
-    // `LoadTable::weights`, lane by lane the same operations
-    let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-    let w = [
-        -t * t1 * t2 * (1.0 / 6.0),
-        tm * t1 * t2 * 0.5,
-        -tm * t * t2 * 0.5,
-        tm * t * t1 * (1.0 / 6.0),
-    ];
-    let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
-    let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
-    let ok = read & finite(ln_mu) & finite(ln_roll);
-    let rolls = F::load(&lanes.rolls[k..]).gt(zero);
-    let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
-    let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
-    // the lanes the table does not serve: the laws themselves
-    scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
 }
 
 /// [`FrictionModel::raceway_sliced`] (Halley) with the laws themselves in lanes: per slice its
@@ -111,62 +112,85 @@ fn read_table(
 /// without entrainment, by the scalar law. For a speed that changes every step, where the
 /// table would be rebuilt every step.
 #[inline(always)]
-pub(super) fn raceway_direct_lanes(model: &FrictionModel, line: &ContactLine, consts: &[SliceConst], lanes: &LineLanes, loads: &[f64], speed: f64) -> RacewayFriction {
-    struct Laws<'a> {
-        model: &'a FrictionModel,
-        line: &'a ContactLine,
-        consts: &'a [SliceConst],
-        lanes: &'a LineLanes,
-    }
-    impl SliceLaws for Laws<'_> {
-        #[inline(always)]
-        fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
-            slice_laws(self.model, self.line, self.consts, self.lanes, k, idx, q, live)
-        }
-    }
-    raceway_lanes(lanes, loads, speed, &mut Laws { model, line, consts, lanes })
+pub(super) fn raceway_direct_lanes(
+    model: &FrictionModel,
+    line: &ContactLine,
+    consts: &[SliceConst],
+    lanes: &LineLanes,
+    loads: &[f64],
+    speed: f64,
+) -> RacewayFriction {
+    raceway_lanes(
+        lanes,
+        loads,
+        speed,
+        &mut DirectLaws {
+            model,
+            line,
+            consts,
+            lanes,
+        },
+    )
 }
 
-/// The laws of [`raceway_direct_lanes`] for slices `idx` (from `k`) with loads `q`, loaded
-/// where `live`.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn slice_laws(model: &FrictionModel, line: &ContactLine, consts: &[SliceConst], lanes: &LineLanes, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
-    use std::f64::consts::PI;
-    let lub = &model.lubricant;
-    let e_prime = lub.e_prime;
-    let slice_len = model.slice_len;
-    let zero = F::splat(0.0);
-    let one = F::splat(1.0);
-    let per = |f: fn(&SliceConst) -> f64| F::from_fn(|i| f(&consts[idx[i]]));
-    let (u_e, v_s) = (per(|c| c.u_e), per(|c| c.v_s));
-    let regular = live & u_e.gt(zero) & v_s.gt(zero);
-    let q = regular.select(q, one);
-    let (u_e, v_s) = (regular.select(u_e, one), regular.select(v_s, one));
-    let r_bar = F::from_fn(|i| line.r_bar[idx[i]]);
-    // contact::line_contact_half_width, the mean pressure
-    let w = q / F::splat(slice_len);
-    let b = (8.0 * w * r_bar / (PI * e_prime)).sqrt();
-    let p_mean = w / (2.0 * b);
-    let p_h = 4.0 / PI * p_mean;
-    // FrictionModel::heating
-    let heated = per(|c| if c.heated { 1.0 } else { 0.0 }).gt(zero);
-    let num = 1.0 - 13.2 * (p_h / e_prime) * per(|c| c.l042);
-    let heating = heated.select((num / per(|c| c.heat_den)).max(F::splat(tr::film::MIN_THERMAL_FACTOR)), one);
-    // the film W^-0.166 law, its logarithm
-    let ln_w_er = ln(w / per(|c| c.e_r));
-    let h = heating * (per(|c| c.film_a) * exp(-0.166 * ln_w_er));
-    let ln_h = ln(h);
-    let ln_vs = per(|c| c.ln_vs);
-    let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
-    ok = ok & pair::exp_range(-0.166 * ln_w_er);
-    let rolls = F::load(&lanes.rolls[k..]).gt(zero);
-    let ln_qr = ln(q / per(|c| c.e_r_l));
-    ok = ok & (!rolls | pair::exp_range(0.246 * ln_qr));
-    let rolling = rolls.select(heating * (per(|c| c.roll_a) * exp(rolls.select(0.246 * ln_qr, zero)) * slice_len), zero);
-    let ok = regular & ok & finite(mu) & finite(rolling);
-    let (mu, rolling) = (ok.select(mu, zero), ok.select(rolling, zero));
-    scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
+/// The laws of [`raceway_direct_lanes`]: a raceway's line, its slices' constants and padded
+/// arrays.
+struct DirectLaws<'a> {
+    model: &'a FrictionModel,
+    line: &'a ContactLine,
+    consts: &'a [SliceConst],
+    lanes: &'a LineLanes,
+}
+
+impl SliceLaws for DirectLaws<'_> {
+    /// Slices `idx` (from `k`) with loads `q`, loaded where `live`.
+    #[inline(always)]
+    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
+        use std::f64::consts::PI;
+        let DirectLaws {
+            model,
+            line,
+            consts,
+            lanes,
+        } = *self;
+        let lub = &model.lubricant;
+        let e_prime = lub.e_prime;
+        let slice_len = model.slice_len;
+        let zero = F::splat(0.0);
+        let one = F::splat(1.0);
+        let per = |f: fn(&SliceConst) -> f64| F::from_fn(|i| f(&consts[idx[i]]));
+        let (u_e, v_s) = (per(|c| c.u_e), per(|c| c.v_s));
+        let regular = live & u_e.gt(zero) & v_s.gt(zero);
+        let q = regular.select(q, one);
+        let (u_e, v_s) = (regular.select(u_e, one), regular.select(v_s, one));
+        let r_bar = F::from_fn(|i| line.r_bar[idx[i]]);
+        // contact::line_contact_half_width, the mean pressure
+        let w = q / F::splat(slice_len);
+        let b = (8.0 * w * r_bar / (PI * e_prime)).sqrt();
+        let p_mean = w / (2.0 * b);
+        let p_h = 4.0 / PI * p_mean;
+        // FrictionModel::heating
+        let heated = per(|c| if c.heated { 1.0 } else { 0.0 }).gt(zero);
+        let num = 1.0 - 13.2 * (p_h / e_prime) * per(|c| c.l042);
+        let heating = heated.select((num / per(|c| c.heat_den)).max(F::splat(tr::film::MIN_THERMAL_FACTOR)), one);
+        // the film W^-0.166 law, its logarithm
+        let ln_w_er = ln(w / per(|c| c.e_r));
+        let h = heating * (per(|c| c.film_a) * exp(-0.166 * ln_w_er));
+        let ln_h = ln(h);
+        let ln_vs = per(|c| c.ln_vs);
+        let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
+        ok = ok & pair::exp_range(-0.166 * ln_w_er);
+        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+        let ln_qr = ln(q / per(|c| c.e_r_l));
+        ok = ok & (!rolls | pair::exp_range(0.246 * ln_qr));
+        let rolling = rolls.select(
+            heating * (per(|c| c.roll_a) * exp(rolls.select(0.246 * ln_qr, zero)) * slice_len),
+            zero,
+        );
+        let ok = regular & ok & finite(mu) & finite(rolling);
+        let (mu, rolling) = (ok.select(mu, zero), ok.select(rolling, zero));
+        scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
+    }
 }
 
 /// What the slice loop of both lane reads asks per group of slices: (traction coefficient,
@@ -185,7 +209,16 @@ fn finite(x: F) -> M {
 /// [`FrictionModel::slice_friction`] (Halley) at their loads `q`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn scalar_laws(model: &FrictionModel, line: &ContactLine, consts: &[SliceConst], idx: [usize; F::N], q: F, scalar: M, mu: F, rolling: F) -> (F, F) {
+fn scalar_laws(
+    model: &FrictionModel,
+    line: &ContactLine,
+    consts: &[SliceConst],
+    idx: [usize; F::N],
+    q: F,
+    scalar: M,
+    mu: F,
+    rolling: F,
+) -> (F, F) {
     if !scalar.any() {
         return (mu, rolling);
     }
