@@ -106,7 +106,7 @@ pub struct RosenbrockW {
     stage_time: [f64; S],
     /// gamma_i = sum_j gamma_ij (j <= i): the weight of h df/dt in stage i.
     time_weight: [f64; S],
-    /// df/dt at the step's start (unused for held inputs).
+    /// df/dt at the step's start (read only where the system is stiffly time dependent).
     f_t: Vec<f64>,
 }
 
@@ -339,9 +339,6 @@ impl RosenbrockW {
             self.jac.read(&memory[HEADER..]);
         }
         let time_dependent = sys.stiffly_time_dependent();
-        if !time_dependent {
-            self.f_t.fill(0.0);
-        }
         let max_age = if time_dependent && sys.near_standstill() {
             self.max_age.min(RAMPED_MAX_AGE)
         } else {
