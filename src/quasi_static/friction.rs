@@ -136,40 +136,40 @@ struct SliceConst {
 const TABLE_PRESSURE: f64 = 4.5e9;
 
 /// What the lane read of the friction table (`friction_lanes.rs`) takes of a raceway's slice
-/// positions, one array per quantity, padded with zeros to a multiple of four slices.
+/// positions, in groups of four slices (the last padded with zeros): each group's quantities
+/// in fixed arrays, so that a group of lanes is read with one bounds check.
 #[derive(Debug, Clone, Default)]
 struct LineLanes {
+    groups: Vec<LaneGroup>,
+}
+
+/// Four slice positions of a [`LineLanes`].
+#[derive(Debug, Clone, Copy, Default)]
+struct LaneGroup {
     /// `SliceConst::table_max` where the slice slides, else -1 (no load is read).
-    table_max: Vec<f64>,
+    table_max: [f64; 4],
     /// 1 where the slice rolls (`SliceConst::rolls`), else 0.
-    rolls: Vec<f64>,
+    rolls: [f64; 4],
     /// The [`SliceWeights`].
-    slide: Vec<f64>,
-    entrain: Vec<f64>,
-    skew: Vec<f64>,
-    sign: Vec<f64>,
+    slide: [f64; 4],
+    entrain: [f64; 4],
+    skew: [f64; 4],
+    sign: [f64; 4],
 }
 
 impl LineLanes {
     fn fill(&mut self, consts: &[SliceConst], w: &SliceWeights) {
-        let padded = consts.len().div_ceil(4) * 4;
-        let put = |v: &mut Vec<f64>, f: &dyn Fn(usize) -> f64| {
-            v.clear();
-            v.extend((0..consts.len()).map(f));
-            v.resize(padded, 0.0);
-        };
-        put(&mut self.table_max, &|k| {
-            if consts[k].v_s > 0.0 {
-                consts[k].table_max
-            } else {
-                -1.0
-            }
-        });
-        put(&mut self.rolls, &|k| if consts[k].rolls { 1.0 } else { 0.0 });
-        put(&mut self.slide, &|k| w.slide[k]);
-        put(&mut self.entrain, &|k| w.entrain[k]);
-        put(&mut self.skew, &|k| w.skew[k]);
-        put(&mut self.sign, &|k| w.sign[k]);
+        self.groups.clear();
+        self.groups.resize(consts.len().div_ceil(4), LaneGroup::default());
+        for (k, c) in consts.iter().enumerate() {
+            let (g, i) = (&mut self.groups[k / 4], k % 4);
+            g.table_max[i] = if c.v_s > 0.0 { c.table_max } else { -1.0 };
+            g.rolls[i] = if c.rolls { 1.0 } else { 0.0 };
+            g.slide[i] = w.slide[k];
+            g.entrain[i] = w.entrain[k];
+            g.skew[i] = w.skew[k];
+            g.sign[i] = w.sign[k];
+        }
     }
 }
 

@@ -22,11 +22,13 @@ pub(super) fn raceway_tabulated_lanes(
     loads: &[f64],
     speed: f64,
 ) -> RacewayFriction {
+    // every node a lane of this raceway's lines can read lies within the table (see
+    // `TableRead::friction`)
+    assert!(2 * (first + loads.len()) * LOAD_GRID_NODES <= table.flat().len(), "friction table shorter than its lines");
     let mut read = TableRead {
         model,
         line,
         consts,
-        lanes,
         table,
         first,
     };
@@ -34,57 +36,53 @@ pub(super) fn raceway_tabulated_lanes(
 }
 
 /// The table read of [`raceway_tabulated_lanes`]: a raceway's line, its slices' constants and
-/// padded arrays, and its lines of the friction table (from line `first`).
+/// its lines of the friction table (from line `first`, all of them within the table).
 struct TableRead<'a> {
     model: &'a FrictionModel,
     line: &'a ContactLine,
     consts: &'a [SliceConst],
-    lanes: &'a LineLanes,
     table: &'a mut LoadTable,
     first: usize,
 }
 
 impl SliceLaws for TableRead<'_> {
-    /// Slices `idx` (from `k`) with loads `q`, loaded where `live`.
+    /// Slices `idx` (from `k`, in `group`) with loads `q`, loaded where `live`.
     #[inline(always)]
-    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
+    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M, group: &LaneGroup) -> (F, F) {
         let TableRead {
             model,
             line,
             consts,
-            lanes,
             first,
             ..
         } = *self;
         let table = &mut *self.table;
         let zero = F::splat(0.0);
         // the table's lanes: sliding, within its load range, on its grid
-        let table_max = F::load(&lanes.table_max[k..]);
         let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
-        let read = live & q.le(table_max) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
-        let read_bits = read.bits();
-        let (whole, cell) = x.trunc_i32();
+        let read = live & q.le(group_lanes(&group.table_max, k)) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
+        let (whole, _) = x.trunc_i32();
         let t = x - whole;
-        // the nodes (node n, function c at offset 2 n + c from a lane's first node; lanes
-        // that are not read point at the start), computed where missing
-        let start: [usize; F::N] = std::array::from_fn(|i| {
-            if read_bits & (1 << i) != 0 {
-                2 * ((first + idx[i]) * LOAD_GRID_NODES + cell[i] as usize - 1)
-            } else {
-                0
-            }
-        });
-        let mut v = gather_nodes(table.flat(), start);
+        // the nodes (node n, function c at offset 2 n + c from a lane's first node
+        // 2 ((first + k + i) NODES + cell - 1); lanes that are not read point at the start),
+        // computed where missing. A lane read is loaded, so k + i < ns, and its cell lies in
+        // 1 ..= NODES - 3: its eight values end within line first + k + i, inside the table
+        // (`raceway_tabulated_lanes`).
+        let line_start = F::splat((2 * (first + k) * LOAD_GRID_NODES) as f64 - 2.0) + F::from_fn(|i| (2 * LOAD_GRID_NODES * i) as f64);
+        let start = read.select(line_start + 2.0 * whole, zero);
+        // SAFETY: as above; unread lanes at 0, the table is not empty (it holds these lines).
+        let mut v = unsafe { F::gather8_at(table.flat(), start) };
         let missing = read & !v.iter().fold(zero, |a, &b| a + b).lt(F::splat(f64::INFINITY));
         if missing.any() {
-            let bits = missing.bits();
+            let (bits, cell) = (missing.bits(), whole.to_array());
             for i in 0..F::N {
                 if bits & (1 << i) != 0 {
                     let (c, r_bar) = (&consts[idx[i]], line.r_bar[idx[i]]);
                     table.nodes(first + idx[i], cell[i] as usize, |qn| model.slice_node(c, r_bar, qn));
                 }
             }
-            v = gather_nodes(table.flat(), start);
+            // SAFETY: as above
+            v = unsafe { F::gather8_at(table.flat(), start) };
         }
         // `LoadTable::weights`, lane by lane the same operations
         let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
@@ -97,7 +95,7 @@ impl SliceLaws for TableRead<'_> {
         let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
         let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
         let ok = read & finite(ln_mu) & finite(ln_roll);
-        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+        let rolls = group_lanes(&group.rolls, k).gt(zero);
         let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
         let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
         // the lanes the table does not serve: the laws themselves
@@ -120,39 +118,22 @@ pub(super) fn raceway_direct_lanes(
     loads: &[f64],
     speed: f64,
 ) -> RacewayFriction {
-    raceway_lanes(
-        lanes,
-        loads,
-        speed,
-        &mut DirectLaws {
-            model,
-            line,
-            consts,
-            lanes,
-        },
-    )
+    raceway_lanes(lanes, loads, speed, &mut DirectLaws { model, line, consts })
 }
 
-/// The laws of [`raceway_direct_lanes`]: a raceway's line, its slices' constants and padded
-/// arrays.
+/// The laws of [`raceway_direct_lanes`]: a raceway's line and its slices' constants.
 struct DirectLaws<'a> {
     model: &'a FrictionModel,
     line: &'a ContactLine,
     consts: &'a [SliceConst],
-    lanes: &'a LineLanes,
 }
 
 impl SliceLaws for DirectLaws<'_> {
-    /// Slices `idx` (from `k`) with loads `q`, loaded where `live`.
+    /// Slices `idx` (from `k`, in `group`) with loads `q`, loaded where `live`.
     #[inline(always)]
-    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F) {
+    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M, group: &LaneGroup) -> (F, F) {
         use std::f64::consts::PI;
-        let DirectLaws {
-            model,
-            line,
-            consts,
-            lanes,
-        } = *self;
+        let DirectLaws { model, line, consts } = *self;
         let lub = &model.lubricant;
         let e_prime = lub.e_prime;
         let slice_len = model.slice_len;
@@ -180,7 +161,7 @@ impl SliceLaws for DirectLaws<'_> {
         let ln_vs = per(|c| c.ln_vs);
         let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
         ok = ok & pair::exp_range(-0.166 * ln_w_er);
-        let rolls = F::load(&lanes.rolls[k..]).gt(zero);
+        let rolls = group_lanes(&group.rolls, k).gt(zero);
         let ln_qr = ln(q / per(|c| c.e_r_l));
         ok = ok & (!rolls | pair::exp_range(0.246 * ln_qr));
         let rolling = rolls.select(
@@ -194,9 +175,20 @@ impl SliceLaws for DirectLaws<'_> {
 }
 
 /// What the slice loop of both lane reads asks per group of slices: (traction coefficient,
-/// rolling resistance) of slices `idx` (from `k`) at loads `q`, loaded where `live`.
+/// rolling resistance) of slices `idx` (from `k`, in the four of `group`) at loads `q`,
+/// loaded where `live`.
 trait SliceLaws {
-    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M) -> (F, F);
+    fn friction(&mut self, k: usize, idx: [usize; F::N], q: F, live: M, group: &LaneGroup) -> (F, F);
+}
+
+/// Slices k .. k + `F::N` of one of a [`LaneGroup`]'s arrays (k a multiple of `F::N`).
+#[inline(always)]
+fn group_lanes(values: &[f64; 4], k: usize) -> F {
+    if F::N == 4 {
+        F::load(values)
+    } else {
+        F::load(&values[k % 4..])
+    }
 }
 
 /// Whether each lane is finite (x - x is 0; NaN for inf and NaN).
@@ -259,15 +251,15 @@ fn raceway_lanes(lanes: &LineLanes, loads: &[f64], speed: f64, law: &mut impl Sl
             k += N;
             continue;
         }
-        let (mu, rolling) = law.friction(k, idx, q, live);
-        // the slices' shares (unloaded lanes: zero), as `raceway_tabulated` forms them; the
-        // padded per-slice arrays (`LineLanes`)
-        let pick = |v: &[f64]| F::load(&v[k..]);
+        let group = &lanes.groups[k / 4];
+        let (mu, rolling) = law.friction(k, idx, q, live, group);
+        // the slices' shares (unloaded lanes: zero), as `raceway_tabulated` forms them
+        let pick = |v: &[f64; 4]| group_lanes(v, k);
         let mq = live.select(mu * q, zero);
         let rolling = live.select(rolling, zero);
-        let torque_k = mq * pick(&lanes.slide) + 2.0 * rolling * pick(&lanes.entrain);
-        let skew_k = mq * sign * pick(&lanes.skew);
-        let slide_k = mq * sign * pick(&lanes.sign);
+        let torque_k = mq * pick(&group.slide) + 2.0 * rolling * pick(&group.entrain);
+        let skew_k = mq * sign * pick(&group.skew);
+        let slide_k = mq * sign * pick(&group.sign);
         for h in 0..N / 2 {
             torque = torque + torque_k.half(h);
             skew = skew + skew_k.half(h);
@@ -282,12 +274,4 @@ fn raceway_lanes(lanes: &LineLanes, loads: &[f64], speed: f64, law: &mut impl Sl
         slide_force: slide_force.lane_sum(),
         rolling: rolling_sum.lane_sum(),
     }
-}
-
-/// The eight values from `start[i]` on (the four nodes' two functions) of every lane.
-#[inline(always)]
-fn gather_nodes(flat: &[f64], start: [usize; F::N]) -> [F; 8] {
-    assert!(start.iter().all(|&s| s + 8 <= flat.len()));
-    // SAFETY: every lane's eight values lie within the table (above).
-    unsafe { F::gather8(flat, start) }
 }

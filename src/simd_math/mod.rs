@@ -56,13 +56,15 @@ impl F2 {
         // SAFETY: two values in bounds (above).
         F2(unsafe { _mm_loadu_pd(v.as_ptr()) })
     }
-    /// Vector j (j < 8) holds `base[start[i] + j]` in lane i.
+    /// Vector j (j < 8) holds `base[start_i + j]` in lane i, `start_i` lane i of `start`.
     ///
     /// # Safety
-    /// `start[i] + 8 <= base.len()` for every lane.
+    /// Every lane of `start` is a whole number with `0 <= start_i` and
+    /// `start_i + 8 <= base.len()`.
     #[inline(always)]
-    pub unsafe fn gather8(base: &[f64], start: [usize; 2]) -> [F2; 8] {
-        let (a, b) = (base.as_ptr().add(start[0]), base.as_ptr().add(start[1]));
+    pub unsafe fn gather8_at(base: &[f64], start: F2) -> [F2; 8] {
+        let [s0, s1] = start.lanes();
+        let (a, b) = (base.as_ptr().add(s0 as usize), base.as_ptr().add(s1 as usize));
         std::array::from_fn(|j| F2::new(*a.add(j), *b.add(j)))
     }
     /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of

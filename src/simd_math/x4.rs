@@ -50,25 +50,17 @@ impl F4 {
         // SAFETY: four values in bounds (above).
         F4(unsafe { _mm256_loadu_pd(v.as_ptr()) })
     }
-    /// Vector j (j < 8) holds `base[start[i] + j]` in lane i (eight gather instructions on
-    /// one index vector).
+    /// Vector j (j < 8) holds `base[start_i + j]` in lane i, `start_i` lane i of `start` (eight
+    /// gather instructions on one index vector).
     ///
     /// # Safety
-    /// `start[i] + 8 <= base.len()` for every lane.
+    /// Every lane of `start` is a whole number with `0 <= start_i` and
+    /// `start_i + 8 <= base.len() < 2^31`.
     #[inline(always)]
-    pub unsafe fn gather8(base: &[f64], start: [usize; 4]) -> [F4; 8] {
-        let idx = _mm256_set_epi64x(start[3] as i64, start[2] as i64, start[1] as i64, start[0] as i64);
+    pub unsafe fn gather8_at(base: &[f64], start: F4) -> [F4; 8] {
+        let idx = _mm256_cvttpd_epi32(start.0);
         let p = base.as_ptr();
-        [
-            F4(_mm256_i64gather_pd::<8>(p, idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(1), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(2), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(3), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(4), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(5), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(6), idx)),
-            F4(_mm256_i64gather_pd::<8>(p.add(7), idx)),
-        ]
+        std::array::from_fn(|j| F4(_mm256_i32gather_pd::<8>(p.add(j), idx)))
     }
     /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
     /// i32 (others: i32::MIN, as the instruction gives).
