@@ -105,8 +105,10 @@ fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f
     // two nodes at or below t, nearest first, then two above
     let (mut below, mut nbelow) = ([(0.0, 0usize); 2], 0);
     let (mut above, mut nabove) = ([(0.0, 0usize); 2], 0);
+    // bins b - k and b + k modulo nb (k <= reach <= nb / 2 and b < nb: one wrap at most)
+    let wrap = |i: usize| if i >= nb { i - nb } else { i };
     for k in 0..=reach {
-        let bin = (b + nb - k % nb) % nb;
+        let bin = wrap(b + nb - k);
         if nbelow < 2 && !nodes[4 * bin].is_nan() {
             let d = offset(bin);
             if d <= 0.0 && (nbelow == 0 || d < below[0].0) {
@@ -114,7 +116,7 @@ fn table_interpolate(nodes: &[f64], nb: usize, period: f64, t: f64, out: &mut [f
                 nbelow += 1;
             }
         }
-        let bin = (b + k) % nb;
+        let bin = wrap(b + k);
         if nabove < 2 && !nodes[4 * bin].is_nan() {
             let d = offset(bin);
             if d > 0.0 && (nabove == 0 || d > above[0].0) {
