@@ -100,8 +100,8 @@ pub(crate) struct Constants {
     centrifugal: bool,
     // cage
     cage_dynamic: bool,
-    m_cage: f64,
-    j_cage: f64,
+    pub(crate) m_cage: f64,
+    pub(crate) j_cage: f64,
     pocket_half: f64,
     k_pocket: f64,
     crit_gap: f64,
@@ -836,6 +836,15 @@ mod lanes4 {
     pub(super) unsafe fn race_slices_avx2(c: &Constants, race: &Race, dd: f64, slice_loads: Option<&mut [f64]>, extra: f64) -> LineSum {
         race_slices_lanes(c, race, dd, slice_loads, extra)
     }
+
+    /// `pocket_sums_lanes` in four lanes, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU has AVX2 (`simd_math::x4::available`).
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn pocket_sums_avx2(c: &Constants, p: &PocketLine) -> Option<PocketSums> {
+        pocket_sums_lanes(c, p)
+    }
 }
 
 /// [`race_slices`] for a raceway without lobes, in lanes: four where the CPU has AVX2
@@ -848,6 +857,21 @@ fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, slice_loads: Option<&m
         unsafe { lanes4::race_slices_avx2(c, race, dd, slice_loads, extra) }
     } else {
         lanes2::race_slices_lanes(c, race, dd, slice_loads, extra)
+    }
+}
+
+/// [`pocket_sums`] in lanes where no slice is within the critical gap of either wall (the
+/// hydrodynamic force and drag alone, as in steady running): four slices at a time where the
+/// CPU has AVX2, else two, the same bits either way (`slice_lanes.rs`); `None` where some
+/// slice touches a wall (the scalar loop then takes the roller).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn pocket_sums_lanes(c: &Constants, p: &PocketLine) -> Option<PocketSums> {
+    if c.four_lanes {
+        // SAFETY: `four_lanes` is set only where the CPU has AVX2 (`Constants::new`).
+        unsafe { lanes4::pocket_sums_avx2(c, p) }
+    } else {
+        lanes2::pocket_sums_lanes(c, p)
     }
 }
 
@@ -953,7 +977,6 @@ fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w
 /// roller, the summed normal load and the dissipated power.
 #[allow(clippy::too_many_arguments)]
 fn cage_pocket(g: &Geometry, c: &Constants, f: &Frame, j: usize, pos: V3, vel: V3, w: V3, a: V3) -> (V3, V3, f64, f64) {
-    let ns = c.s_cm.len();
     let psi_p = f.cage_psi + TAU * j as f64 / g.z as f64;
     let (spp, cpp) = libm::sincos(psi_p);
     let e_tp = V3::new(0.0, -spp, cpp);
@@ -974,11 +997,110 @@ fn cage_pocket(g: &Geometry, c: &Constants, f: &Frame, j: usize, pos: V3, vel: V
     let (aa, bb, cc) = (va.dot(&va), vb.dot(&vb), vc.dot(&vc));
     let (ab, ac, bc) = (va.dot(&vb), va.dot(&vc), vb.dot(&vc));
     let l = c.slice_len;
-    let (k_hyd, k_drag) = (2.44 * l * c.eta0 * spin_rel, 4.58 * l * c.eta0 * spin_rel);
-    // sums: sigma q, c, c s, sigma rad c, sigma q s, c s^2, sigma c s rad, c rad^2, q
+    let line = PocketLine {
+        tau0,
+        tau1,
+        aa,
+        bb,
+        cc,
+        ab,
+        ac,
+        bc,
+        v0e,
+        v1e,
+        k_hyd: 2.44 * l * c.eta0 * spin_rel,
+        k_drag: 4.58 * l * c.eta0 * spin_rel,
+    };
+    #[cfg(target_arch = "x86_64")]
+    let sums = if c.lane_slices {
+        pocket_sums_lanes(c, &line).unwrap_or_else(|| pocket_sums(c, &line))
+    } else {
+        pocket_sums(c, &line)
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let sums = pocket_sums(c, &line);
+    let PocketSums {
+        q: s_q,
+        qs: s_qs,
+        c: s_c,
+        cs: s_cs,
+        css: s_css,
+        crad: s_crad,
+        csrad: s_csrad,
+        crr: s_crr,
+        q_pocket,
+        power: p_cage,
+    } = sums;
+    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
+    let m_pk = -(a.cross(&e_tp) * s_qs
+        + a.cross(&va) * s_cs
+        + a.cross(&vb) * s_css
+        + a.cross(&vc) * s_csrad
+        + e_tp.cross(&va) * s_crad
+        + e_tp.cross(&vb) * s_csrad
+        + e_tp.cross(&vc) * s_crr);
+    (f_pk, m_pk, q_pocket, p_cage)
+}
+
+/// One roller's pocket in the terms its slice sums need (`cage_pocket`): the offset of the
+/// roller axis from the pocket's mid-plane at station s, tau0 + tau1 s; the tangential
+/// surface velocity relative to the cage, A + s B + sigma rad C, by its dot products; the
+/// closing speed v0e + v1e s (times the wall's side); the hydrodynamic force and drag
+/// factors.
+#[derive(Clone, Copy)]
+struct PocketLine {
+    tau0: f64,
+    tau1: f64,
+    aa: f64,
+    bb: f64,
+    cc: f64,
+    ab: f64,
+    ac: f64,
+    bc: f64,
+    v0e: f64,
+    v1e: f64,
+    k_hyd: f64,
+    k_drag: f64,
+}
+
+/// The slice sums of one roller's pocket (`cage_pocket`): sigma q, sigma q s, c, c s, c s^2,
+/// sigma rad c, sigma c s rad, c rad^2 (sigma the wall's side, c the drag over the sliding
+/// speed), the summed normal load and the dissipated power.
+#[derive(Default)]
+struct PocketSums {
+    q: f64,
+    qs: f64,
+    c: f64,
+    cs: f64,
+    css: f64,
+    crad: f64,
+    csrad: f64,
+    crr: f64,
+    q_pocket: f64,
+    power: f64,
+}
+
+/// [`PocketSums`] slice by slice and wall by wall: above the critical gap the hydrodynamic
+/// force and drag, below it the wall contact (Hertz, restitution damping, boundary friction).
+fn pocket_sums(c: &Constants, p: &PocketLine) -> PocketSums {
+    let PocketLine {
+        tau0,
+        tau1,
+        aa,
+        bb,
+        cc,
+        ab,
+        ac,
+        bc,
+        v0e,
+        v1e,
+        k_hyd,
+        k_drag,
+    } = *p;
     let mut p_cage = 0.0;
     let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
         (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let ns = c.s_cm.len();
     for k in 0..ns {
         let sk = c.s_cm[k];
         let rad = c.radius[k];
@@ -1018,15 +1140,18 @@ fn cage_pocket(g: &Geometry, c: &Constants, f: &Frame, j: usize, pos: V3, vel: V
             p_cage += ct * vs2;
         }
     }
-    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
-    let m_pk = -(a.cross(&e_tp) * s_qs
-        + a.cross(&va) * s_cs
-        + a.cross(&vb) * s_css
-        + a.cross(&vc) * s_csrad
-        + e_tp.cross(&va) * s_crad
-        + e_tp.cross(&vb) * s_csrad
-        + e_tp.cross(&vc) * s_crr);
-    (f_pk, m_pk, q_pocket, p_cage)
+    PocketSums {
+        q: s_q,
+        qs: s_qs,
+        c: s_c,
+        cs: s_cs,
+        css: s_css,
+        crad: s_crad,
+        csrad: s_csrad,
+        crr: s_crr,
+        q_pocket,
+        power: p_cage,
+    }
 }
 
 /// Roller `j`'s contacts (cup, cone, flange, cage pocket) at state `y`: its record (loads,

@@ -201,3 +201,78 @@ pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, k: [usize; F
     };
     (coef, couple, ok)
 }
+
+/// [`pocket_sums`] `F::N` slices at a time where every slice lies farther than the critical
+/// gap from both walls (the hydrodynamic force and drag alone); `None` where any does not (or
+/// a gap is NaN): the scalar loop takes the roller. The same formulas per slice and wall, in
+/// the same order, as [`pocket_sums`]; the sums gather the even and the odd slices apart and
+/// add, pair by pair in slice order, the front wall's shares and then the back wall's, so two
+/// and four lanes add the same numbers in the same order (lanes past the last slice add exact
+/// zeros).
+#[inline(always)]
+pub(super) fn pocket_sums_lanes(c: &Constants, p: &PocketLine) -> Option<PocketSums> {
+    use crate::simd_math::F2;
+    const N: usize = F::N;
+    let zero = F::splat(0.0);
+    let crit = F::splat(c.crit_gap);
+    let (k_hyd, k_drag) = (F::splat(p.k_hyd), F::splat(p.k_drag));
+    // q, qs, c, cs, css, crad, csrad, crr, q_pocket, power
+    let mut sums = [F2::splat(0.0); 10];
+    let ns = c.s_cm.len();
+    let mut k = 0;
+    while k < ns {
+        let idx: [usize; N] = std::array::from_fn(|i| (k + i).min(ns - 1));
+        let lanes = F::from_fn(|i| if k + i < ns { 1.0 } else { 0.0 }).gt(zero);
+        let pick = |v: &[f64]| F::from_fn(|i| v[idx[i]]);
+        let (sk, rad) = (pick(&c.s_cm), pick(&c.radius));
+        let tau = F::splat(p.tau0) + F::splat(p.tau1) * sk;
+        let alpha = F::splat(p.aa) + sk * (F::splat(2.0 * p.ab) + sk * p.bb) + rad * rad * p.cc;
+        let beta = 2.0 * rad * (F::splat(p.ac) + sk * p.bc);
+        let mut wall = [[zero; 10]; 2];
+        for (w, side) in [1.0_f64, -1.0].into_iter().enumerate() {
+            let gap = F::splat(c.pocket_half) - tau * side;
+            if !(gap.ge(crit) | !lanes).all() {
+                return None;
+            }
+            let inv = 1.0 / gap;
+            let qn = lanes.select(k_hyd * rad * rad * inv, zero);
+            let drag = k_drag * rad * (rad * inv).sqrt();
+            let vs2 = (alpha + beta * side).max(zero);
+            let ct = (lanes & vs2.gt(zero)).select(drag / (vs2 + V_EPS * V_EPS).sqrt(), zero);
+            let sq = qn * side;
+            wall[w] = [
+                sq,
+                sq * sk,
+                ct,
+                ct * sk,
+                ct * sk * sk,
+                rad * side * ct,
+                sk * side * rad * ct,
+                ct * rad * rad,
+                qn,
+                ct * vs2,
+            ];
+        }
+        for h in 0..N / 2 {
+            for shares in &wall {
+                for (s, v) in sums.iter_mut().zip(shares) {
+                    *s = *s + v.half(h);
+                }
+            }
+        }
+        k += N;
+    }
+    let [q, qs, c_sum, cs, css, crad, csrad, crr, q_pocket, power] = sums.map(|s| s.lane_sum());
+    Some(PocketSums {
+        q,
+        qs,
+        c: c_sum,
+        cs,
+        css,
+        crad,
+        csrad,
+        crr,
+        q_pocket,
+        power,
+    })
+}

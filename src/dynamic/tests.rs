@@ -951,8 +951,10 @@ fn explore_sweep() {
 /// slice: the traction forces agree to 1e-12, the derivative to 1e-14 of the scale of the forces
 /// each row sums (a roller's acceleration rows are near-cancelling sums of its contact loads:
 /// the scale is its raceway and flange load over its mass, times the roller length over the
-/// transverse inertia for the angular ones; the cone's the total load over the cone mass).
-/// Rows without raceway traction (positions, cage) agree bit for bit. States: the [W25] start
+/// transverse inertia for the angular ones; the cone's the total load over the cone mass;
+/// the cage's, whose pocket sums are taken in lanes too, the pockets' summed force over the
+/// cage mass and their summed moment over its inertia). Rows without contact forces
+/// (positions) agree bit for bit. States: the [W25] start
 /// and 1 ms on, combined load with misalignment, a mixed film (rough surfaces), no inlet
 /// heating, low speed, Roelands' viscosity, a lobed cup (its slices one at a time, the traction paired), an odd
 /// slice count, and the laws without the two-lane traction (dry, `traction` = 1).
@@ -1013,12 +1015,19 @@ fn paired_traction_agrees_with_the_scalar_law() {
         d.rhs(&i, &st.y, &mut slow);
         let (m_r, i_t, len) = (d.g.roller_mass, d.g.inertia_transverse, d.g.length);
         let loads: Vec<f64> = d.eval.records.iter().map(|r| r.qi + r.qo + r.qf).collect();
+        // the pockets' forces and moments on the cage (their slice sums in lanes too)
+        let pocket_force: f64 = d.eval.records.iter().map(|r| r.f_cage.norm()).sum();
+        let pocket_moment: f64 = d.eval.records.iter().map(|r| r.m_cage.abs()).sum();
         let mut worst: f64 = 0.0;
         for k in 0..n {
             let (a, s) = (fast[k], slow[k]);
             let scale = if k < super::ROLLERS {
                 if (super::CONE + 3..super::CONE + 6).contains(&k) {
                     loads.iter().sum::<f64>() / d.p.cone_mass
+                } else if (super::CAGE + 3..super::CAGE + 5).contains(&k) {
+                    pocket_force / d.c.m_cage
+                } else if k == super::CAGE + 5 {
+                    pocket_moment / d.c.j_cage
                 } else {
                     0.0
                 }
