@@ -49,21 +49,25 @@ fn smooth_table_needs_fewer_newton_iterations() {
     // predictor alone 3.04, 2.73, 2.59 and 2.88; with both 2.87, 2.39, 2.25 and 2.53.
     // TRB130x230 and 32008 (a full load zone): 1.98 and 2.00 with the cubic spatial
     // interpolation alone, 1.27 and 1.38 with the quintic where the samples are smooth.
+    // The largest count of a step (after the first 10): 32018X took 6 and 5 where a roller
+    // the flange barely touches had three local Newton steps before the global ones
+    // (`QuasiStatic::relax_unbalanced_rollers`), 4 with ten.
     let mut failed = Vec::new();
-    for (preset, fy, xi, limit) in [
-        ("CRB-TRILOBE", Some(1e3), 0.0, 2.95),
-        ("CRB-TRILOBE", None, 0.004, 2.5),
-        ("32018X", Some(35e3), 0.0, 2.35),
-        ("32018X", None, 0.004, 2.65),
-        ("TRB130x230", Some(10e3), 0.0, 1.5),
-        ("32008", Some(5e3), 0.0, 1.6),
+    for (preset, fy, xi, limit, most) in [
+        ("CRB-TRILOBE", Some(1e3), 0.0, 2.95, 4),
+        ("CRB-TRILOBE", None, 0.004, 2.5, 5),
+        ("32018X", Some(35e3), 0.0, 2.35, 4),
+        ("32018X", None, 0.004, 2.65, 4),
+        ("TRB130x230", Some(10e3), 0.0, 1.5, 2),
+        ("32008", Some(5e3), 0.0, 1.6, 2),
     ] {
         let its = iterations(preset, fy, xi, 150);
         let mean = its.iter().sum::<i32>() as f64 / its.len() as f64;
-        println!("{preset} Fy {fy:?} xi {xi}: mean {mean:.3}, max {}", its.iter().max().unwrap());
-        if mean > limit {
+        let max = *its.iter().max().unwrap();
+        println!("{preset} Fy {fy:?} xi {xi}: mean {mean:.3}, max {max}");
+        if mean > limit || max > most {
             failed.push(format!(
-                "{preset} Fy {fy:?} xi {xi}: {mean:.3} iterations per step (at most {limit}): {its:?}"
+                "{preset} Fy {fy:?} xi {xi}: {mean:.3} iterations per step (at most {limit}), at most {max} in a step (at most {most}): {its:?}"
             ));
         }
     }
