@@ -134,7 +134,7 @@ fn no_step_of_the_table_cuts_newton_down_for_one_roller() {
 /// its prediction. The table is tried before the linear temporal extrapolation and keeps only
 /// solutions converged well below the tolerance; before, the extrapolation served every step
 /// and the recorded predictions drifted up to the tolerance: 1.10 iterations per step over
-/// these steps (0.33 now; with the misaligned shaft 1.33, now 0.75).
+/// these steps (0.33 now; with the misaligned shaft 1.33, now 0.84).
 #[test]
 fn constant_load_on_a_slow_shaft_stops_at_the_table_prediction() {
     for (fy, xi, limit) in [(Some(35e3), 0.0, 0.6), (None, 0.004, 1.0)] {
