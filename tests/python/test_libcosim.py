@@ -69,8 +69,19 @@ def run_libcosim(fmu_path, model, fys: list[float]) -> list[list[dict]]:
     return results
 
 
+# Absolute resolution of outputs that are zero up to the equilibrium solver's noise under these
+# loads (radial load along y, aligned shaft): libcosim passes communication points in whole
+# nanoseconds and the FMU steps to t + h, so its step sizes differ from fmpy's in the last bit,
+# and the Newton solve's tolerance-level noise (residual 1e-9 of ~1e4 N at levers of ~0.1 m:
+# ~1e-6 N m) then differs between the two runs. reaction.My is that noise (~1e-10 N m here).
+NOISE_FLOOR = {"reaction.My": 1e-6}
+
+
 def assert_same(a: dict, b: dict, what: str, rel: float = 1e-10):
-    bad = {n: (a[n], b[n]) for n in OUTPUTS if not close_enough(a[n], b[n], rel=rel, abs_=1e-12 * max(1.0, abs(a[n])))}
+    def floor(n: str) -> float:
+        return max(1e-12 * max(1.0, abs(a[n])), NOISE_FLOOR.get(n, 0.0))
+
+    bad = {n: (a[n], b[n]) for n in OUTPUTS if not close_enough(a[n], b[n], rel=rel, abs_=floor(n))}
     assert not bad, f"{what}: {bad}"
 
 
