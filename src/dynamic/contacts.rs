@@ -1083,20 +1083,6 @@ struct PocketSums {
 /// [`PocketSums`] slice by slice and wall by wall: above the critical gap the hydrodynamic
 /// force and drag, below it the wall contact (Hertz, restitution damping, boundary friction).
 fn pocket_sums(c: &Constants, p: &PocketLine) -> PocketSums {
-    let PocketLine {
-        tau0,
-        tau1,
-        aa,
-        bb,
-        cc,
-        ab,
-        ac,
-        bc,
-        v0e,
-        v1e,
-        k_hyd,
-        k_drag,
-    } = *p;
     let mut p_cage = 0.0;
     let (mut s_q, mut s_c, mut s_cs, mut s_crad, mut s_qs, mut s_css, mut s_csrad, mut s_crr, mut q_pocket) =
         (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -1104,19 +1090,19 @@ fn pocket_sums(c: &Constants, p: &PocketLine) -> PocketSums {
     for k in 0..ns {
         let sk = c.s_cm[k];
         let rad = c.radius[k];
-        let tau = tau0 + tau1 * sk;
-        let alpha = aa + sk * (2.0 * ab + sk * bb) + rad * rad * cc;
-        let beta = 2.0 * rad * (ac + sk * bc);
-        let closing0 = v0e + v1e * sk;
+        let tau = p.tau0 + p.tau1 * sk;
+        let alpha = p.aa + sk * (2.0 * p.ab + sk * p.bb) + rad * rad * p.cc;
+        let beta = 2.0 * rad * (p.ac + sk * p.bc);
+        let closing0 = p.v0e + p.v1e * sk;
         for side in [1.0_f64, -1.0] {
             // gap to the wall on side `side` (front wall at +e_tp)
             let gap = c.pocket_half - side * tau;
             let (qn, drag) = if gap >= c.crit_gap {
                 let inv = 1.0 / gap;
-                (k_hyd * rad * rad * inv, k_drag * rad * (rad * inv).sqrt())
+                (p.k_hyd * rad * rad * inv, p.k_drag * rad * (rad * inv).sqrt())
             } else {
                 let closing = side * closing0;
-                let qh = k_hyd * rad * rad / c.crit_gap;
+                let qh = p.k_hyd * rad * rad / c.crit_gap;
                 let kappa = (1.0 - 0.026 * libm::cbrt(closing.abs())).clamp(0.05, 1.0);
                 let lk = libm::log(kappa);
                 let c_ph = 2.0 * (c.reduced_mass * c.k_pocket).sqrt() * (-lk) / (lk * lk + PI * PI).sqrt();

@@ -36,9 +36,7 @@ pub(super) fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_l
     let ns = c.s_cm.len();
     let mut k = 0;
     while k < ns {
-        // past the last slice, lanes repeat it, masked out
-        let idx: [usize; N] = std::array::from_fn(|i| (k + i).min(ns - 1));
-        let lanes = F::from_fn(|i| if k + i < ns { 1.0 } else { 0.0 }).gt(zero);
+        let (idx, lanes) = slice_group(k, ns);
         let pick = |v: &[f64]| F::from_fn(|i| v[idx[i]]);
         let rad = pick(&c.radius) + dd - pick(&c.shrink);
         let cl = pos.add(&a.scale(pick(&c.s_cm)));
@@ -221,8 +219,7 @@ pub(super) fn pocket_sums_lanes(c: &Constants, p: &PocketLine) -> Option<PocketS
     let ns = c.s_cm.len();
     let mut k = 0;
     while k < ns {
-        let idx: [usize; N] = std::array::from_fn(|i| (k + i).min(ns - 1));
-        let lanes = F::from_fn(|i| if k + i < ns { 1.0 } else { 0.0 }).gt(zero);
+        let (idx, lanes) = slice_group(k, ns);
         let pick = |v: &[f64]| F::from_fn(|i| v[idx[i]]);
         let (sk, rad) = (pick(&c.s_cm), pick(&c.radius));
         let tau = F::splat(p.tau0) + F::splat(p.tau1) * sk;
@@ -275,4 +272,13 @@ pub(super) fn pocket_sums_lanes(c: &Constants, p: &PocketLine) -> Option<PocketS
         q_pocket,
         power,
     })
+}
+
+/// The slices of the group of lanes from slice `k` of `ns`, and which lanes hold one: past the
+/// last slice, lanes repeat it, masked out.
+#[inline(always)]
+fn slice_group(k: usize, ns: usize) -> ([usize; F::N], M) {
+    let idx = std::array::from_fn(|i| (k + i).min(ns - 1));
+    let lanes = F::from_fn(|i| if k + i < ns { 1.0 } else { 0.0 }).gt(F::splat(0.0));
+    (idx, lanes)
 }
