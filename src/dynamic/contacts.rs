@@ -1019,27 +1019,15 @@ fn cage_pocket(g: &Geometry, c: &Constants, f: &Frame, j: usize, pos: V3, vel: V
     };
     #[cfg(not(target_arch = "x86_64"))]
     let sums = pocket_sums(c, &line);
-    let PocketSums {
-        q: s_q,
-        qs: s_qs,
-        c: s_c,
-        cs: s_cs,
-        css: s_css,
-        crad: s_crad,
-        csrad: s_csrad,
-        crr: s_crr,
-        q_pocket,
-        power: p_cage,
-    } = sums;
-    let f_pk = -(e_tp * s_q + va * s_c + vb * s_cs + vc * s_crad);
-    let m_pk = -(a.cross(&e_tp) * s_qs
-        + a.cross(&va) * s_cs
-        + a.cross(&vb) * s_css
-        + a.cross(&vc) * s_csrad
-        + e_tp.cross(&va) * s_crad
-        + e_tp.cross(&vb) * s_csrad
-        + e_tp.cross(&vc) * s_crr);
-    (f_pk, m_pk, q_pocket, p_cage)
+    let f_pk = -(e_tp * sums.q + va * sums.c + vb * sums.cs + vc * sums.crad);
+    let m_pk = -(a.cross(&e_tp) * sums.qs
+        + a.cross(&va) * sums.cs
+        + a.cross(&vb) * sums.css
+        + a.cross(&vc) * sums.csrad
+        + e_tp.cross(&va) * sums.crad
+        + e_tp.cross(&vb) * sums.csrad
+        + e_tp.cross(&vc) * sums.crr);
+    (f_pk, m_pk, sums.q_pocket, sums.power)
 }
 
 /// One roller's pocket in the terms its slice sums need (`cage_pocket`): the offset of the
