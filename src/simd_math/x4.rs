@@ -50,17 +50,20 @@ impl F4 {
         // SAFETY: four values in bounds (above).
         F4(unsafe { _mm256_loadu_pd(v.as_ptr()) })
     }
-    /// Vector j (j < 8) holds `base[start_i + j]` in lane i, `start_i` lane i of `start` (eight
-    /// gather instructions on one index vector).
+    /// Vector j (j < 8) holds `base[start_i + j]` in lane i, `start_i` lane i of `start`: each
+    /// lane's eight values loaded as two contiguous vectors and transposed (two 4 x 4
+    /// transposes), a fraction of the time of eight gather instructions on Zen 3.
     ///
     /// # Safety
     /// Every lane of `start` is a whole number with `0 <= start_i` and
     /// `start_i + 8 <= base.len() < 2^31`.
     #[inline(always)]
     pub unsafe fn gather8_at(base: &[f64], start: F4) -> [F4; 8] {
-        let idx = _mm256_cvttpd_epi32(start.0);
-        let p = base.as_ptr();
-        std::array::from_fn(|j| F4(_mm256_i32gather_pd::<8>(p.add(j), idx)))
+        let mut at = [0i32; 4];
+        _mm_storeu_si128(at.as_mut_ptr() as *mut __m128i, _mm256_cvttpd_epi32(start.0));
+        let half = |h: usize| transpose4(at.map(|s| _mm256_loadu_pd(base.as_ptr().add(s as usize + 4 * h))));
+        let ([v0, v1, v2, v3], [v4, v5, v6, v7]) = (half(0), half(1));
+        [v0, v1, v2, v3, v4, v5, v6, v7].map(F4)
     }
     /// Every lane truncated towards zero, as f64 and as i32, for lanes within the range of
     /// i32 (others: i32::MIN, as the instruction gives).
@@ -388,6 +391,21 @@ unsafe fn exp_pd(y: __m256d) -> __m256d {
     let e = _mm256_sub_pd(set(1.0), _mm256_sub_pd(_mm256_sub_pd(lo, q), hi));
     let ki = _mm256_sub_epi64(_mm256_castpd_si256(t), _mm256_castpd_si256(set(ROUNDER)));
     _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(e), _mm256_slli_epi64::<52>(ki)))
+}
+
+/// The 4 x 4 transpose: vector j of the result holds element j of `rows[i]` in lane i.
+#[inline(always)]
+unsafe fn transpose4(rows: [__m256d; 4]) -> [__m256d; 4] {
+    let [a, b, c, d] = rows;
+    // (a0 b0 a2 b2), (a1 b1 a3 b3), (c0 d0 c2 d2), (c1 d1 c3 d3)
+    let (ab_even, ab_odd) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+    let (cd_even, cd_odd) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
+    [
+        _mm256_permute2f128_pd::<0x20>(ab_even, cd_even),
+        _mm256_permute2f128_pd::<0x20>(ab_odd, cd_odd),
+        _mm256_permute2f128_pd::<0x31>(ab_even, cd_even),
+        _mm256_permute2f128_pd::<0x31>(ab_odd, cd_odd),
+    ]
 }
 
 #[cfg(test)]
