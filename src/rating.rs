@@ -159,20 +159,40 @@ pub enum RotatingRing {
 /// stands: a point sees the roller loads where it stands). `offset` picks the ring in the
 /// per-roller layout [cone laminae | cup laminae].
 fn lamina_equivalent_power(slice_loads: &[f64], laminae: usize, offset: usize, k: usize, rotating: bool) -> f64 {
+    let mut mean = [0.0];
+    lamina_equivalent_powers::<1>(slice_loads, laminae, offset, k, rotating, &mut mean);
+    mean[0]
+}
+
+/// [`lamina_equivalent_power`] of laminae `k .. k + L` at once (each lamina's sum over the
+/// rollers in the same order, so the same bits; the L laminae side by side in vector lanes).
+fn lamina_equivalent_powers<const L: usize>(
+    slice_loads: &[f64],
+    laminae: usize,
+    offset: usize,
+    k: usize,
+    rotating: bool,
+    out: &mut [f64; L],
+) {
     let stride = 2 * laminae;
     let rollers = slice_loads.len() / stride;
-    let mut sum = 0.0;
-    for j in 0..rollers {
-        let q = slice_loads[j * stride + offset + k].max(0.0);
-        let q2 = q * q;
-        sum += if rotating { q2 * q2 } else { q2 * q2 * q.sqrt() };
+    let mut sum = [0.0; L];
+    for roller in slice_loads.chunks_exact(stride) {
+        let q: &[f64; L] = roller[offset + k..offset + k + L].try_into().unwrap();
+        for i in 0..L {
+            let q = q[i].max(0.0);
+            let q2 = q * q;
+            sum[i] += if rotating { q2 * q2 } else { q2 * q2 * q.sqrt() };
+        }
     }
-    let mean = sum / rollers as f64;
-    if rotating {
-        // mean^(9/8) = mean * mean^(1/8): three correctly rounded square roots
-        mean * mean.sqrt().sqrt().sqrt()
-    } else {
-        mean
+    for i in 0..L {
+        let mean = sum[i] / rollers as f64;
+        out[i] = if rotating {
+            // mean^(9/8) = mean * mean^(1/8): three correctly rounded square roots
+            mean * mean.sqrt().sqrt().sqrt()
+        } else {
+            mean
+        };
     }
 }
 
@@ -185,10 +205,26 @@ pub fn reference_rating_life(ratings: &LaminaRatings, slice_loads: &[f64], rotat
     debug_assert!(!slice_loads.is_empty() && slice_loads.len() % (2 * ns) == 0);
     let pow45 = |q: f64| q * q * (q * q) * q.sqrt();
     let (qi45, qe45) = (pow45(ratings.q_ci), pow45(ratings.q_ce));
+    // the laminae four at a time (then one by one), added in lamina order
+    const L: usize = 4;
+    let (cone_turns, cup_turns) = (rotating == RotatingRing::Cone, rotating == RotatingRing::Cup);
     let mut damage = 0.0;
-    for k in 0..ns {
-        damage += lamina_equivalent_power(slice_loads, ns, 0, k, rotating == RotatingRing::Cone) / qi45
-            + lamina_equivalent_power(slice_loads, ns, ns, k, rotating == RotatingRing::Cup) / qe45;
+    let mut k = 0;
+    while k < ns {
+        let (mut cone, mut cup) = ([0.0; L], [0.0; L]);
+        let width = if k + L <= ns {
+            lamina_equivalent_powers(slice_loads, ns, 0, k, cone_turns, &mut cone);
+            lamina_equivalent_powers(slice_loads, ns, ns, k, cup_turns, &mut cup);
+            L
+        } else {
+            cone[0] = lamina_equivalent_power(slice_loads, ns, 0, k, cone_turns);
+            cup[0] = lamina_equivalent_power(slice_loads, ns, ns, k, cup_turns);
+            1
+        };
+        for i in 0..width {
+            damage += cone[i] / qi45 + cup[i] / qe45;
+        }
+        k += width;
     }
     if damage > 0.0 {
         libm::pow(damage, -8.0 / 9.0)
