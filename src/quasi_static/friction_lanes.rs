@@ -3,8 +3,8 @@
 // SSE2) and `friction::lanes4` (four, AVX2).
 
 /// [`FrictionModel::raceway_tabulated`] `F::N` slices at a time: the logarithm of each load,
-/// its place on the table's grid, the four-node interpolation of ln(traction coefficient) and
-/// ln(rolling resistance / load) and their exponentials in the lanes; the nodes gathered (and
+/// its place on the table's grid, the four-node interpolation of ln(traction coefficient)
+/// and of the rolling resistance, and the first's exponential, in the lanes; the nodes gathered (and
 /// computed where missing, by the same law as the scalar read) lane by lane. Lanes the table
 /// does not serve (no sliding, above `table_max`, off the grid, a law not finite at a node)
 /// take the law directly, as the scalar read does. The sums gather slices k, k + 1 of every
@@ -93,11 +93,11 @@ impl SliceLaws for TableRead<'_> {
             tm * t * t1 * (1.0 / 6.0),
         ];
         let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
-        let ln_roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
-        let ok = read & finite(ln_mu) & finite(ln_roll);
+        let roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
+        let ok = read & finite(ln_mu) & finite(roll);
         let rolls = group_lanes(&group.rolls, k).gt(zero);
         let mu = ok.select(exp(ok.select(ln_mu, zero)), zero);
-        let rolling = (ok & rolls).select(exp((ok & rolls).select(ln_roll, zero)) * q, zero);
+        let rolling = (ok & rolls).select(roll, zero);
         // the lanes the table does not serve: the laws themselves
         scalar_laws(model, line, consts, idx, q, live & !ok, mu, rolling)
     }
