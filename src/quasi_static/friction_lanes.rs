@@ -25,14 +25,47 @@ pub(super) fn raceway_tabulated_lanes(
     // every node a lane of this raceway's lines can read lies within the table (see
     // `TableRead::friction`)
     assert!(2 * (first + loads.len()) * LOAD_GRID_NODES <= table.flat().len(), "friction table shorter than its lines");
+    // first every group's place on the grid, then the reads: the logarithms (a division each)
+    // are independent of one another, and the reads' loads no longer wait on them inside one
+    // long loop body (on Zen 3 the body overflowed the reorder window)
+    let mut grid = [F::splat(0.0); GRID_GROUPS];
+    let precomputed = loads.len() <= GRID_GROUPS * F::N;
+    if precomputed {
+        for (g, x) in grid.iter_mut().enumerate().take(loads.len().div_ceil(F::N)) {
+            *x = grid_coordinate(group_loads(loads, g * F::N));
+        }
+    }
     let mut read = TableRead {
         model,
         line,
         consts,
         table,
         first,
+        grid: precomputed.then_some(&grid),
     };
     raceway_lanes(lanes, loads, speed, &mut read)
+}
+
+/// Groups of slices whose grid coordinates [`raceway_tabulated_lanes`] computes ahead (longer
+/// lines: each group's in its own read).
+const GRID_GROUPS: usize = 32;
+
+/// The loads of slices k .. k + `F::N` (past the line's end: zero).
+#[inline(always)]
+fn group_loads(loads: &[f64], k: usize) -> F {
+    let ns = loads.len();
+    if k + F::N <= ns {
+        F::load(&loads[k..])
+    } else {
+        F::from_fn(|i| if k + i < ns { loads[k + i] } else { 0.0 })
+    }
+}
+
+/// Each lane's place on the friction table's grid, (ln q - first node) / step (unloaded lanes:
+/// that of 1 N; the read does not use them).
+#[inline(always)]
+fn grid_coordinate(q: F) -> F {
+    (ln(q.gt(F::splat(0.0)).select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP)
 }
 
 /// The table read of [`raceway_tabulated_lanes`]: a raceway's line, its slices' constants and
@@ -43,6 +76,8 @@ struct TableRead<'a> {
     consts: &'a [SliceConst],
     table: &'a mut LoadTable,
     first: usize,
+    /// Each group's grid coordinate, computed ahead (short lines).
+    grid: Option<&'a [F; GRID_GROUPS]>,
 }
 
 impl SliceLaws for TableRead<'_> {
@@ -54,12 +89,16 @@ impl SliceLaws for TableRead<'_> {
             line,
             consts,
             first,
+            grid,
             ..
         } = *self;
         let table = &mut *self.table;
         let zero = F::splat(0.0);
         // the table's lanes: sliding, within its load range, on its grid
-        let x = (ln(live.select(q, F::splat(1.0))) - LOAD_GRID_FIRST) * (1.0 / LOAD_GRID_STEP);
+        let x = match grid {
+            Some(grid) => grid[k / F::N],
+            None => grid_coordinate(live.select(q, zero)),
+        };
         let read = live & q.le(group_lanes(&group.table_max, k)) & x.ge(F::splat(1.0)) & x.lt(F::splat((LOAD_GRID_NODES - 2) as f64));
         let (whole, _) = x.trunc_i32();
         let t = x - whole;
@@ -241,11 +280,7 @@ fn raceway_lanes(lanes: &LineLanes, loads: &[f64], speed: f64, law: &mut impl Sl
     while k < ns {
         // past the last slice, lanes repeat it with no load
         let idx: [usize; N] = std::array::from_fn(|i| (k + i).min(ns - 1));
-        let q = if k + N <= ns {
-            F::load(&loads[k..])
-        } else {
-            F::from_fn(|i| if k + i < ns { loads[k + i] } else { 0.0 })
-        };
+        let q = group_loads(loads, k);
         let live = q.gt(zero);
         if !live.any() {
             k += N;
