@@ -4,7 +4,7 @@
 
 /// [`race_slices`] for a raceway without lobes (extra gap `extra` everywhere, no slope)
 /// `F::N` slices at a time: slices k, k + 1, ... in the lanes through the geometry, the
-/// contact law (per lane), the traction ([`slice_traction_lanes`], lanes it does not take by
+/// contact law ([`contact_law_lanes`]), the traction ([`slice_traction_lanes`], lanes it does not take by
 /// [`slice_traction`]) and the sums. The sums gather the even and the odd slices apart, in
 /// slice order, and add them at the end: lanes 2h and 2h + 1 of every group of `F::N` are
 /// added as the h-th pair, so two and four lanes add the same numbers in the same order (a
@@ -68,17 +68,7 @@ pub(super) fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_l
             k += N;
             continue;
         }
-        // the contact law per lane
-        let delta = delta.to_array();
-        let (mut q_el, mut dq) = ([0.0; N], [0.0; N]);
-        for i in 0..N {
-            if bits & (1 << i) != 0 {
-                let x;
-                (q_el[i], dq[i], x) = line.law.load(idx[i], delta[i]);
-                extrapolated |= x;
-            }
-        }
-        let (q_el, dq) = (F::from_fn(|i| q_el[i]), F::from_fn(|i| dq[i]));
+        let (q_el, dq) = contact_law_lanes(&line.law, idx, delta, live, &mut extrapolated);
         let n = V::new(F::splat(n0), py * n1, pz * n1);
         let lever = pl.sub(&pos);
         let v_rel = v_c.add(&w_rel.cross(&lever));
@@ -198,6 +188,41 @@ pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, k: [usize; F
         F::splat(0.0)
     };
     (coef, couple, ok)
+}
+
+/// The slice law (load, stiffness) of slices `idx` at interferences `delta`, loaded where
+/// `live` (others: zero). The Johnson law in the lanes, [`crate::contact::johnson`]'s
+/// operations in its order (its logarithm the lanes' fdlibm one, within 1 ulp of the scalar
+/// table-based one); a lane beyond the law's validity (linear continuation, flagged in
+/// `extrapolated`) and the Palmgren law per lane by the scalar law.
+#[inline(always)]
+fn contact_law_lanes(law: &LineLaw, idx: [usize; F::N], delta: F, live: M, extrapolated: &mut bool) -> (F, F) {
+    let zero = F::splat(0.0);
+    let mut scalar = live;
+    let (mut q, mut dq) = (zero, zero);
+    if let LineLaw::Johnson { c, ln_8r } = law {
+        let d = live.select(delta, F::splat(1.0));
+        let lg = F::from_fn(|i| ln_8r[idx[i]]) - ln(d);
+        let den = lg - 1.0;
+        let inv = 1.0 / den;
+        let regular = live & den.ge(F::splat(crate::contact::JOHNSON_LOG_FLOOR));
+        q = regular.select(F::splat(*c) * d * inv, zero);
+        dq = regular.select(F::splat(*c) * lg * inv * inv, zero);
+        scalar = live & !regular;
+    }
+    if !scalar.any() {
+        return (q, dq);
+    }
+    let (bits, delta) = (scalar.bits(), delta.to_array());
+    let (mut qa, mut ka) = (q.to_array(), dq.to_array());
+    for i in 0..F::N {
+        if bits & (1 << i) != 0 {
+            let x;
+            (qa[i], ka[i], x) = law.load(idx[i], delta[i]);
+            *extrapolated |= x;
+        }
+    }
+    (F::from_fn(|i| qa[i]), F::from_fn(|i| ka[i]))
 }
 
 /// [`pocket_sums`] `F::N` slices at a time where every slice lies farther than the critical
