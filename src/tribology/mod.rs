@@ -15,6 +15,8 @@
 //! has coefficients we cannot source; `traction.rs` takes its place with a physical law whose
 //! constants are the oil's (documented defaults in docs/model.md, "Oil traction data").
 
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod eyring_table;
 pub mod film;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod pair;

@@ -138,30 +138,38 @@ fn maxwell_mean(ratio: F) -> F {
     mean
 }
 
-/// `traction::solve_thermal_eyring` in every lane, by Halley's method as
-/// `traction::solve_thermal_eyring_halley` (the same root to rounding in 2-3 evaluations
-/// where Newton's takes 4-5), from the regimes' closed forms with the same bracket and
-/// stopping rule, until every lane stops; asinh(X) where B = `heating` is 0. The mask: lanes
-/// that stopped as the scalar solver does (within 60 steps, exponentials in range).
+/// `traction::solve_thermal_eyring` in every lane, by Halley's method: within the table's
+/// range (`eyring_table`: ln X in [-4, 12.25), B in [0, 7]) one step from the table's
+/// bicubic read (within 1e-14 of the root), elsewhere as `traction::solve_thermal_eyring_halley`
+/// (the same root to rounding in 2-3 evaluations), from the regimes' closed forms with the
+/// same bracket and stopping rule, until every lane stops; asinh(X) where B = `heating` is 0.
+/// The mask: lanes that stopped as the scalar solver does (within 60 steps, exponentials in
+/// range).
 #[inline(always)]
 fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
     let zero = F::splat(0.0);
-    // start: ln(2X) / (1 + B) for X > 1, X / (1 + B X) below
-    let large = ln_x.gt(zero);
-    let mut y = (ln_x + std::f64::consts::LN_2) / (1.0 + heating);
-    if !large.all() {
-        let x0 = exp(ln_x.min(zero));
-        y = large.select(y, x0 / (1.0 + heating * x0));
-    }
     let mut ok = ln_x.gt(F::splat(-EXP_RANGE));
-    let (mut lo, mut hi) = (zero, F::splat(f64::INFINITY));
     // without heating the closed form (asinh_exp)
     let isothermal = !heating.gt(zero);
+    let mut active = ok & !isothermal;
+    // the table's lanes: one Halley step from its read
+    let (mut y, on) = table_start(ln_x, heating);
+    let mut tabulated = active & on;
+    if (active & !tabulated).any() {
+        // start: ln(2X) / (1 + B) for X > 1, X / (1 + B X) below
+        let large = ln_x.gt(zero);
+        let mut start = (ln_x + std::f64::consts::LN_2) / (1.0 + heating);
+        if !large.all() {
+            let x0 = exp(ln_x.min(zero));
+            start = large.select(start, x0 / (1.0 + heating * x0));
+        }
+        y = tabulated.select(y, start);
+    }
+    let (mut lo, mut hi) = (zero, F::splat(f64::INFINITY));
     let mut out = y;
     if isothermal.any() {
         out = isothermal.select(asinh_exp_and_slope(ln_x).0, out);
     }
-    let mut active = ok & !isothermal;
     for _ in 0..60 {
         if !active.any() {
             break;
@@ -177,7 +185,8 @@ fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
         let above = f.gt(zero);
         hi = above.select(y, hi);
         lo = above.select(lo, y);
-        let done = active & step.abs().le(1e-9 * y.max(F::splat(1e-300)));
+        let done = active & (tabulated | step.abs().le(1e-9 * y.max(F::splat(1e-300))));
+        tabulated = M::splat(false);
         out = done.select(y - step, out);
         active = active & !done;
         let next = y - step;
@@ -185,6 +194,34 @@ fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
         y = inside.select(next, 0.5 * (lo + hi.min(2.0 * y.max(lo))));
     }
     (out, ok & !active)
+}
+
+/// The bicubic read of the table of the film equation's root (`eyring_table`) and the lanes
+/// where (ln X, B) lies in its range and the read is positive (the mask; others read 1).
+#[inline(always)]
+fn table_start(ln_x: F, heating: F) -> (F, M) {
+    use super::super::eyring_table as t;
+    let one = F::splat(1.0);
+    let xg = (ln_x - t::FIRST_LN_X) * (1.0 / t::STEP_LN_X);
+    let xc = (1.0 / (1.0 + heating) - t::FIRST_C) * (1.0 / t::STEP_C);
+    let on = xg.ge(one) & xg.lt(F::splat((t::NODES_LN_X - 2) as f64)) & xc.ge(one) & xc.lt(F::splat((t::NODES_C - 2) as f64));
+    if !on.any() {
+        return (one, on);
+    }
+    let (xg, xc) = (on.select(xg, one), on.select(xc, one));
+    let ((i, _), (j, _)) = (xg.trunc_i32(), xc.trunc_i32());
+    let (wg, wc) = (t::weights(xg - i), t::weights(xc - j));
+    // a lane's 16 values from 4 (j NODES_LN_X + i - 1): nodes i - 1 .. i + 2 in ln X, each
+    // with its four in c
+    let table = t::table();
+    let start = 4.0 * (j * t::NODES_LN_X as f64 + i - 1.0);
+    // SAFETY: 1 <= i <= NODES_LN_X - 3 and 1 <= j <= NODES_C - 3 (`on`; other lanes at node
+    // (1, 1)), so 0 <= start and start + 16 <= 4 NODES_LN_X (NODES_C - 2) <= table.len()
+    let (lo, hi) = unsafe { (F::gather8_at(table, start), F::gather8_at(table, start + 8.0)) };
+    let column = |v: &[F; 8], h: usize| wc[0] * v[4 * h] + wc[1] * v[4 * h + 1] + wc[2] * v[4 * h + 2] + wc[3] * v[4 * h + 3];
+    let read = wg[0] * column(&lo, 0) + wg[1] * column(&lo, 1) + wg[2] * column(&hi, 0) + wg[3] * column(&hi, 1);
+    let on = on & read.gt(F::splat(0.0));
+    (on.select(read, one), on)
 }
 
 /// asinh(e^g) and its slope in g (`traction::asinh_exp_and_slope`) in every lane.

@@ -210,7 +210,7 @@ fn solve_thermal_eyring(ln_x: f64, heating: f64) -> f64 {
 
 /// [`solve_thermal_eyring`] by Halley's method, with the same start, bracket and stopping rule.
 #[inline]
-fn solve_thermal_eyring_halley(ln_x: f64, heating: f64) -> f64 {
+pub(crate) fn solve_thermal_eyring_halley(ln_x: f64, heating: f64) -> f64 {
     solve_thermal_eyring_by(ln_x, heating, |y| {
         let (asinh, dz, x) = asinh_exp_slope_and_x(ln_x - heating * y);
         let f = y - asinh;
