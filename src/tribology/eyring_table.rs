@@ -5,10 +5,12 @@
 //! y = asinh(X e^(-B y)) (`traction.rs`: Eyring 1936 with the film's shear heating, the form
 //! Johnson & Greenwood, Wear 61 (1980) 353 solve across the film; X = eta gamma_dot / tau_0,
 //! B = beta_p tau_0 dT / tau). The root depends on ln X and B alone, whatever the oil, so one
-//! table serves every contact. It holds y at the nodes of a grid in ln X (step 1/4, -4 to
+//! table serves every contact. It holds y at the nodes of a grid in ln X (step 1/4, -12 to
 //! 12.25) and in c = 1 / (1 + B) (step 1/32, 0.125 to 1.0625: B from 7 down to a little
 //! below zero). In c the large-X branch y = ln(2X) / (1 + B) is linear, so a cubic in c
 //! follows it where a cubic in B would not (1/(1 + B) has large derivatives near B = 0).
+//! Below the table (X < e^-12, B <= 7) the small-X closed form X / (1 + B X) is within
+//! (B X)^2 / 2 < 1e-9 of the root and serves as the start of the same single step.
 //!
 //! Read by bicubic Lagrange interpolation (the 4 x 4 nodes around a point), the table gives y
 //! within 1.3e-4 of the root (relative, over the grid's cells), and one Halley step from
@@ -19,15 +21,17 @@
 //!
 //! Each node stores the four values of its column of the stencil (c nodes j - 1 .. j + 2),
 //! so a point's 16 values are contiguous: two eight-value loads per lane
-//! (`simd_math::F4::gather8_at`). 68 x 32 x 4 values, 70 kB, built once per process from
+//! (`simd_math::F4::gather8_at`), built once per process (about 1.5 ms) from
 //! the pure-Rust `libm` (the same bits on every platform).
+//!
+//! Grid: 100 x 32 nodes, 4 values each (102 kB).
 
 use std::sync::OnceLock;
 
 /// First node of the grid in ln X, its step and the nodes.
-pub(crate) const FIRST_LN_X: f64 = -4.25;
+pub(crate) const FIRST_LN_X: f64 = -12.25;
 pub(crate) const STEP_LN_X: f64 = 0.25;
-pub(crate) const NODES_LN_X: usize = 68;
+pub(crate) const NODES_LN_X: usize = 100;
 /// First node of the grid in c = 1 / (1 + B), its step and the nodes.
 pub(crate) const FIRST_C: f64 = 0.125 - STEP_C;
 pub(crate) const STEP_C: f64 = 1.0 / 32.0;
@@ -108,9 +112,18 @@ fn root(ln_x: f64, b: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// One Halley step from `y` (as `pair_lanes.rs` takes it, with libm's asinh).
+    fn halley_step(ln_x: f64, b: f64, y: f64) -> f64 {
+        let x = libm::exp(ln_x - b * y);
+        let (f, dz) = (y - libm::asinh(x), x / libm::sqrt(1.0 + x * x));
+        let (d1, d2) = (1.0 + b * dz, -b * b * dz / (1.0 + x * x));
+        y - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2)
+    }
+
     /// The table read by bicubic interpolation and one Halley step (as the lane kernels take
     /// it) against the root: within 1e-14, relative, at 40 points in every cell of the grid's
-    /// range (the start within 2e-4); the law's iterative solver within 3e-12 of the same root.
+    /// range (the start within 2e-4); the law's iterative solver within 3e-12 of the same root;
+    /// below the table (ln X from -42 to -12, B to 7) the closed form and one step within 1e-14.
     #[test]
     fn one_halley_step_from_the_table_meets_the_root() {
         let t = table();
@@ -128,7 +141,7 @@ mod tests {
                     let (tg, tc) = (uniform(), uniform());
                     let ln_x = FIRST_LN_X + (i as f64 + tg) * STEP_LN_X;
                     let c = FIRST_C + (j as f64 + tc) * STEP_C;
-                    if !(ln_x >= -4.0 && c <= 1.0) {
+                    if !(ln_x >= FIRST_LN_X + STEP_LN_X && c <= 1.0) {
                         continue;
                     }
                     let b = 1.0 / c - 1.0;
@@ -138,12 +151,7 @@ mod tests {
                         let v = &t[4 * (j * NODES_LN_X + i + a - 1)..];
                         y0 += wa * (wc[0] * v[0] + wc[1] * v[1] + wc[2] * v[2] + wc[3] * v[3]);
                     }
-                    // one Halley step (pair_lanes.rs)
-                    let x = libm::exp(ln_x - b * y0);
-                    let root1 = libm::sqrt(1.0 + x * x);
-                    let (f, dz) = (y0 - libm::asinh(x), x / root1);
-                    let (d1, d2) = (1.0 + b * dz, -b * b * dz / (1.0 + x * x));
-                    let y1 = y0 - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
+                    let y1 = halley_step(ln_x, b, y0);
                     let exact = root(ln_x, b);
                     // the law's own solver, whose asinh takes a series below e^g = 0.1 (its
                     // truncation 2.2e-12 at 0.1)
@@ -157,5 +165,15 @@ mod tests {
         assert!(worst_start < 2e-4, "table start off by {worst_start:e}");
         assert!(worst < 1e-14, "one Halley step off by {worst:e} (start {worst_start:e})");
         assert!(worst_law < 3e-12, "the law's solver off by {worst_law:e}");
+        // below the table: the small-X closed form and one step
+        let mut worst_below: f64 = 0.0;
+        for k in 0..4000 {
+            let ln_x = -12.0 - 30.0 * uniform();
+            let b = 7.0 * (k % 40) as f64 / 39.0;
+            let x = libm::exp(ln_x);
+            let y1 = halley_step(ln_x, b, x / (1.0 + b * x));
+            worst_below = worst_below.max((y1 - root(ln_x, b)).abs() / root(ln_x, b));
+        }
+        assert!(worst_below < 1e-14, "below the table: one Halley step off by {worst_below:e}");
     }
 }

@@ -139,8 +139,9 @@ fn maxwell_mean(ratio: F) -> F {
 }
 
 /// `traction::solve_thermal_eyring` in every lane, by Halley's method: within the table's
-/// range (`eyring_table`: ln X in [-4, 12.25), B in [0, 7]) one step from the table's
-/// bicubic read (within 1e-14 of the root), elsewhere as `traction::solve_thermal_eyring_halley`
+/// range (`eyring_table`: ln X in [-12, 12.25), B in [0, 7]) one step from the table's
+/// bicubic read, below it (B in range) one from the small-X closed form (both within 1e-14
+/// of the root), elsewhere as `traction::solve_thermal_eyring_halley`
 /// (the same root to rounding in 2-3 evaluations), from the regimes' closed forms with the
 /// same bracket and stopping rule, until every lane stops; asinh(X) where B = `heating` is 0.
 /// The mask: lanes that stopped as the scalar solver does (within 60 steps, exponentials in
@@ -152,10 +153,11 @@ fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
     // without heating the closed form (asinh_exp)
     let isothermal = !heating.gt(zero);
     let mut active = ok & !isothermal;
-    // the table's lanes: one Halley step from its read
-    let (mut y, on) = table_start(ln_x, heating);
-    let mut tabulated = active & on;
-    if (active & !tabulated).any() {
+    // the table's lanes, and those below it: one Halley step from its read or from the
+    // small-X closed form (`eyring_table`)
+    let (mut y, on, below) = table_start(ln_x, heating);
+    let mut tabulated = active & (on | below);
+    if (active & !on).any() {
         // start: ln(2X) / (1 + B) for X > 1, X / (1 + B X) below
         let large = ln_x.gt(zero);
         let mut start = (ln_x + std::f64::consts::LN_2) / (1.0 + heating);
@@ -163,7 +165,7 @@ fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
             let x0 = exp(ln_x.min(zero));
             start = large.select(start, x0 / (1.0 + heating * x0));
         }
-        y = tabulated.select(y, start);
+        y = on.select(y, start);
     }
     let (mut lo, mut hi) = (zero, F::splat(f64::INFINITY));
     let mut out = y;
@@ -196,17 +198,20 @@ fn solve_thermal_eyring(ln_x: F, heating: F) -> (F, M) {
     (out, ok & !active)
 }
 
-/// The bicubic read of the table of the film equation's root (`eyring_table`) and the lanes
-/// where (ln X, B) lies in its range and the read is positive (the mask; others read 1).
+/// The bicubic read of the table of the film equation's root (`eyring_table`), the lanes
+/// where (ln X, B) lies in its range and the read is positive (others read 1), and the lanes
+/// below its range in ln X with B in it.
 #[inline(always)]
-fn table_start(ln_x: F, heating: F) -> (F, M) {
+fn table_start(ln_x: F, heating: F) -> (F, M, M) {
     use super::super::eyring_table as t;
     let one = F::splat(1.0);
     let xg = (ln_x - t::FIRST_LN_X) * (1.0 / t::STEP_LN_X);
     let xc = (1.0 / (1.0 + heating) - t::FIRST_C) * (1.0 / t::STEP_C);
-    let on = xg.ge(one) & xg.lt(F::splat((t::NODES_LN_X - 2) as f64)) & xc.ge(one) & xc.lt(F::splat((t::NODES_C - 2) as f64));
+    let in_c = xc.ge(one) & xc.lt(F::splat((t::NODES_C - 2) as f64));
+    let below = in_c & xg.lt(one);
+    let on = in_c & xg.ge(one) & xg.lt(F::splat((t::NODES_LN_X - 2) as f64));
     if !on.any() {
-        return (one, on);
+        return (one, on, below);
     }
     let (xg, xc) = (on.select(xg, one), on.select(xc, one));
     let ((i, _), (j, _)) = (xg.trunc_i32(), xc.trunc_i32());
@@ -221,7 +226,7 @@ fn table_start(ln_x: F, heating: F) -> (F, M) {
     let column = |v: &[F; 8], h: usize| wc[0] * v[4 * h] + wc[1] * v[4 * h + 1] + wc[2] * v[4 * h + 2] + wc[3] * v[4 * h + 3];
     let read = wg[0] * column(&lo, 0) + wg[1] * column(&lo, 1) + wg[2] * column(&hi, 0) + wg[3] * column(&hi, 1);
     let on = on & read.gt(F::splat(0.0));
-    (on.select(read, one), on)
+    (on.select(read, one), on, below)
 }
 
 /// asinh(e^g) and its slope in g (`traction::asinh_exp_and_slope`) in every lane.
