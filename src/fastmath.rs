@@ -8,6 +8,9 @@
 //! bits and 0 <= t < 1/128; ln x = e ln 2 + ln c_j + ln(1 + t), the last by its series to t^9.
 //! exp: y = k ln2/64 + r, |r| <= ln2/128; exp y = 2^(k/64) exp(r), with 2^(k/64) from a table
 //! (exponent bits) and exp(r) by its Taylor series to r^7.
+//!
+//! Also the cubic Lagrange weights of the tables read in the hot loops (the quasi-static
+//! friction table, the film equation's root), for f64 and for the lane types.
 
 const LN2: f64 = std::f64::consts::LN_2;
 
@@ -162,4 +165,25 @@ mod tests {
             assert!(ulps(a, b) < 8.0, "{x}: {a} vs {b}");
         }
     }
+}
+
+/// The cubic Lagrange weights of the nodes at -1, 0, 1, 2 at position `t` in [0, 1) of a
+/// cell, for f64 and for the lane types (the same operations in the same order in each).
+#[inline(always)]
+pub fn lagrange4_weights<T>(t: T) -> [T; 4]
+where
+    T: Copy
+        + std::ops::Add<f64, Output = T>
+        + std::ops::Sub<f64, Output = T>
+        + std::ops::Mul<T, Output = T>
+        + std::ops::Mul<f64, Output = T>
+        + std::ops::Neg<Output = T>,
+{
+    let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
+    [
+        -t * t1 * t2 * (1.0 / 6.0),
+        tm * t1 * t2 * 0.5,
+        -tm * t * t2 * 0.5,
+        tm * t * t1 * (1.0 / 6.0),
+    ]
 }

@@ -123,14 +123,8 @@ impl SliceLaws for TableRead<'_> {
             // SAFETY: as above
             v = unsafe { F::gather8_at(table.flat(), start) };
         }
-        // `LoadTable::weights`, lane by lane the same operations
-        let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-        let w = [
-            -t * t1 * t2 * (1.0 / 6.0),
-            tm * t1 * t2 * 0.5,
-            -tm * t * t2 * 0.5,
-            tm * t * t1 * (1.0 / 6.0),
-        ];
+        // the scalar read's weights, lane by lane the same operations
+        let w = crate::fastmath::lagrange4_weights(t);
         let ln_mu = w[0] * v[0] + w[1] * v[2] + w[2] * v[4] + w[3] * v[6];
         let roll = w[0] * v[1] + w[1] * v[3] + w[2] * v[5] + w[3] * v[7];
         let ok = read & finite(ln_mu) & finite(roll);

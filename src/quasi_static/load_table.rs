@@ -74,18 +74,6 @@ impl LoadTable {
         self.values.as_flattened()
     }
 
-    /// Lagrange weights of the nodes at -1, 0, 1, 2 at position `t` in [0, 1).
-    #[inline(always)]
-    pub(super) fn weights(t: f64) -> [f64; 4] {
-        let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-        [
-            -t * t1 * t2 * (1.0 / 6.0),
-            tm * t1 * t2 * 0.5,
-            -tm * t * t2 * 0.5,
-            tm * t * t1 * (1.0 / 6.0),
-        ]
-    }
-
     /// Both functions of line `line` at load `q` > 0, `law(q_node)` computing a node; `None`
     /// outside the grid or where a law is not finite at a node (the caller then evaluates the
     /// law itself).
@@ -96,7 +84,7 @@ impl LoadTable {
             return None;
         }
         let i = x as usize;
-        let w = Self::weights(x - i as f64);
+        let w = crate::fastmath::lagrange4_weights(x - i as f64);
         let v = self.nodes(line, i, law);
         let mut out = [0.0; 2];
         for c in 0..2 {

@@ -28,6 +28,9 @@
 
 use std::sync::OnceLock;
 
+#[cfg(test)]
+use crate::fastmath::lagrange4_weights as weights;
+
 /// First node of the grid in ln X, its step and the nodes.
 pub(crate) const FIRST_LN_X: f64 = -12.25;
 pub(crate) const STEP_LN_X: f64 = 0.25;
@@ -61,27 +64,6 @@ pub(crate) fn table() -> &'static [f64] {
         }
         t
     })
-}
-
-/// The cubic Lagrange weights of nodes -1, 0, 1, 2 at t in [0, 1) of a cell (as
-/// `quasi_static::load_table`'s).
-#[inline(always)]
-pub(crate) fn weights<T>(t: T) -> [T; 4]
-where
-    T: Copy
-        + std::ops::Add<f64, Output = T>
-        + std::ops::Sub<f64, Output = T>
-        + std::ops::Mul<T, Output = T>
-        + std::ops::Mul<f64, Output = T>
-        + std::ops::Neg<Output = T>,
-{
-    let (tm, t1, t2) = (t + 1.0, t - 1.0, t - 2.0);
-    [
-        -t * t1 * t2 * (1.0 / 6.0),
-        tm * t1 * t2 * 0.5,
-        -tm * t * t2 * 0.5,
-        tm * t * t1 * (1.0 / 6.0),
-    ]
 }
 
 /// The root of y = asinh(e^(ln_x - b y)) to rounding, for b > -0.5 (f' = 1 + b e^u /

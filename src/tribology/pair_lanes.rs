@@ -215,7 +215,7 @@ fn table_start(ln_x: F, heating: F) -> (F, M, M) {
     }
     let (xg, xc) = (on.select(xg, one), on.select(xc, one));
     let ((i, _), (j, _)) = (xg.trunc_i32(), xc.trunc_i32());
-    let (wg, wc) = (t::weights(xg - i), t::weights(xc - j));
+    let (wg, wc) = (crate::fastmath::lagrange4_weights(xg - i), crate::fastmath::lagrange4_weights(xc - j));
     // a lane's 16 values from 4 (j NODES_LN_X + i - 1): nodes i - 1 .. i + 2 in ln X, each
     // with its four in c
     let table = t::table();
