@@ -13,6 +13,17 @@ pub fn effective_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
 }
 
+/// Hertz's maximum pressure of a line contact, p0 = sqrt(w E* / (pi R)) (Johnson, Contact
+/// Mechanics, eq. 4.45), for load per length `w`, effective modulus `e_prime` = E' = 2 E* and
+/// relative radius of curvature `r_bar`.
+pub fn line_contact_pressure(w: f64, e_prime: f64, r_bar: f64) -> f64 {
+    if w > 0.0 {
+        (w * e_prime / (2.0 * PI * r_bar)).sqrt()
+    } else {
+        0.0
+    }
+}
+
 /// Palmgren's roller stiffness in SI: Q = K delta^(10/9) with K = 8.06e4 l^(8/9) in N and mm,
 /// i.e. 8.06e4 * 1000^(8/9 + 10/9) = 8.06e10 l^(8/9) with l and delta in metres.
 pub fn palmgren_roller_stiffness(length: f64) -> f64 {

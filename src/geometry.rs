@@ -104,6 +104,22 @@ pub struct Geometry {
 }
 
 impl Geometry {
+    /// The largest Hertz pressure (Pa) over the raceway slices whose loads `slice_loads` holds,
+    /// per roller the cone's slices then the cup's (the layout of both models' slice loads).
+    pub fn max_raceway_pressure(&self, slice_loads: &[f64]) -> f64 {
+        let ns = self.slices;
+        let mut p_max: f64 = 0.0;
+        for roller in slice_loads.chunks_exact(2 * ns) {
+            let (cone, cup) = roller.split_at(ns);
+            for (line, loads) in [(&self.cone, cone), (&self.cup, cup)] {
+                for (k, q) in loads.iter().enumerate() {
+                    p_max = p_max.max(contact::line_contact_pressure(q / self.slice_len, self.e_prime, line.r_bar[k]));
+                }
+            }
+        }
+        p_max
+    }
+
     pub fn new(b: &Bearing, p: &Parameters) -> Geometry {
         let s = p.slices;
         let ai = b.cone_angle;

@@ -32,3 +32,4 @@ pub mod simulation;
 pub mod skf_friction;
 pub mod tribology;
 pub mod variables;
+pub mod warnings;

@@ -119,10 +119,45 @@ pub struct Parameters {
     /// loads and bearing; `dynamic/steady.rs`) instead of at the quasi-static seat.
     #[serde(default = "yes")]
     pub start_steady: bool,
+    /// Dynamic model: right-hand-side evaluations a doStep may spend per simulated second
+    /// (`workBudget`; a step of length h gets `step_work_budget(h)`).
+    pub work_budget: f64,
 }
 
 fn yes() -> bool {
     true
+}
+
+/// The default `workBudget`: right-hand-side evaluations per simulated second.
+///
+/// A co-simulation master waits for every doStep, so each one must end within a bound that
+/// does not depend on the inputs. The bound is counted in evaluations of the dynamic model's
+/// right-hand side (Jacobian columns included), not in seconds, so that whether a step
+/// succeeds is the same on every machine and a restored state repeats it bit for bit. 1e8 per
+/// simulated second is 100 000 evaluations for a 1 ms step: about 7 s of wall time for a
+/// 17-roller bearing with 20 slices (73 µs per evaluation, one core of the reference
+/// machine). The costliest legal transient measured needs 79 000: a load jump within the
+/// static rating on a light cone (a 30206 from Fx 3 kN, Fy 2 kN to 20 kN each, static safety
+/// 1.8), where the cone strikes the rollers and those on the unloaded side leave and strike
+/// their raceways and rib again (steps of nanoseconds for the first 60 µs,
+/// `docs/robustness.md`, "Bounded steps"); the run-up from rest about 10 000 in its first
+/// millisecond, steady running under combined load 120 per millisecond.
+pub const DEFAULT_WORK_BUDGET: f64 = 1e8;
+
+/// The least budget of one doStep, whatever its length: a roller impact resolved in steps of
+/// nanoseconds (about 10 000 evaluations in 2 µs at tolerance 1e-5), so that short
+/// communication steps (sampling at 20-500 kHz) are not refused for being short.
+pub const MIN_STEP_WORK: u64 = 20_000;
+
+/// The right-hand-side evaluations a doStep of length `h` may spend with budget `rate` per
+/// simulated second.
+pub fn step_work_budget(rate: f64, h: f64) -> u64 {
+    let n = rate * h;
+    if n.is_finite() && n > MIN_STEP_WORK as f64 {
+        n.min(u64::MAX as f64 / 2.0) as u64
+    } else {
+        MIN_STEP_WORK
+    }
 }
 
 impl Parameters {
@@ -224,6 +259,7 @@ impl Parameters {
             start_steady: true,
             max_step: 1e-3,
             threads: 1,
+            work_budget: DEFAULT_WORK_BUDGET,
         }
     }
 
@@ -365,6 +401,12 @@ impl Parameters {
         }
         if !(self.max_step.is_finite() && self.max_step >= 1e-9 && self.max_step <= 1.0) {
             return bad("maxStep", format!("must be in [1e-9, 1] s, got {}", self.max_step));
+        }
+        if !(self.work_budget.is_finite() && (1e3..=1e12).contains(&self.work_budget)) {
+            return bad(
+                "workBudget",
+                format!("must be in [1e3, 1e12] evaluations per simulated second, got {}", self.work_budget),
+            );
         }
         Ok(())
     }
@@ -623,6 +665,13 @@ pub struct Outputs {
     /// ISO 281 basic rating life and ISO/TS 16281 basic reference rating life (h).
     pub life_l10: f64,
     pub life_l10r: f64,
+    /// ISO 76 basic static load rating (N), static safety factor C0/P0 of the carried loads,
+    /// and the largest Hertz pressure over the raceway slices (Pa).
+    pub rating_c0: f64,
+    pub safety_s0: f64,
+    pub pressure_max: f64,
+    /// Smallest raceway film ratio (at the most heavily loaded slices).
+    pub film_ratio_raceway: f64,
     /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
     pub stiffness: [f64; 25],
     /// The oil's dynamic viscosity at the current oil temperature (Pa s).
@@ -684,6 +733,10 @@ impl Outputs {
             rating_c,
             life_l10,
             life_l10r,
+            rating_c0,
+            safety_s0,
+            pressure_max,
+            film_ratio_raceway,
             stiffness,
             oil_viscosity,
             tilt_max,
@@ -735,6 +788,10 @@ impl Outputs {
         self.rating_c.clone_from(rating_c);
         self.life_l10.clone_from(life_l10);
         self.life_l10r.clone_from(life_l10r);
+        self.rating_c0.clone_from(rating_c0);
+        self.safety_s0.clone_from(safety_s0);
+        self.pressure_max.clone_from(pressure_max);
+        self.film_ratio_raceway.clone_from(film_ratio_raceway);
         self.stiffness.clone_from(stiffness);
         self.oil_viscosity.clone_from(oil_viscosity);
         self.tilt_max.clone_from(tilt_max);
@@ -826,6 +883,10 @@ impl Outputs {
             self.rating_c,
             self.life_l10,
             self.life_l10r,
+            self.rating_c0,
+            self.safety_s0,
+            self.pressure_max,
+            self.film_ratio_raceway,
             self.oil_viscosity,
             self.tilt_max,
             self.tilt_mean,
@@ -888,13 +949,53 @@ pub enum ModelError {
     IntegratorFailure {
         message: String,
     },
+    /// The loads are beyond the model's validity (`load_within_range`); the same refusal at
+    /// every fidelity.
+    OutOfRange {
+        message: String,
+    },
+}
+
+/// Contact pressures above this multiple of the ISO 76 static limit (4000 MPa) are beyond
+/// the model's range. At twice the limit, 8000 MPa, the load is four times the static rating
+/// (the pressure of a line contact grows with the root of its load), the contact half-width of
+/// steel on steel (E* = 114 GPa) is b = 2 p0 R / E* = 14 % of the relative radius of
+/// curvature, where Hertz's half-space solution that every contact law here rests on is no
+/// longer small against the bodies, and the pressure is above the indentation hardness of
+/// bearing steel (about 7 GPa at 60 HRC): the rings yield through, which no elastic law
+/// describes.
+pub const PRESSURE_RANGE: f64 = 2.0;
+
+/// Refuse a solution whose loads are beyond the model's validity: a contact pressure more
+/// than [`PRESSURE_RANGE`] times the ISO 76 static limit, or a slice interference beyond the
+/// line-contact law's range. Both models check their solutions with it (the dynamic model
+/// the quasi-static solution for its inputs, before it integrates), so both refuse the
+/// same loads with the same message.
+pub fn load_within_range(out: &Outputs, report: &SolveReport) -> Result<(), ModelError> {
+    let limit = PRESSURE_RANGE * crate::rating::STATIC_LIMIT_STRESS;
+    if out.pressure_max > limit {
+        return Err(ModelError::OutOfRange {
+            message: format!(
+                "the largest contact pressure is {:.0} MPa, more than {PRESSURE_RANGE} times the static limit of {:.0} MPa of ISO 76 (static safety factor s0 = {:.3}); the contact laws are elastic and rest on Hertz's half-space, which ends there (docs/model.md, \"The model's range\"); reduce the load",
+                out.pressure_max * 1e-6,
+                crate::rating::STATIC_LIMIT_STRESS * 1e-6,
+                out.safety_s0
+            ),
+        });
+    }
+    if report.contact_law_extrapolated {
+        return Err(ModelError::OutOfRange {
+            message: "a slice interference is beyond the validity range of the line-contact law (Johnson: ln(8 R / delta) - 1 < 3, delta > 0.15 R); reduce the load or the interference".to_string(),
+        });
+    }
+    Ok(())
 }
 
 impl ModelError {
     pub fn severity(&self) -> Severity {
         match self {
             ModelError::InvalidParameter { .. } | ModelError::InvalidInput { .. } => Severity::Error,
-            ModelError::NoEquilibrium { .. } | ModelError::IntegratorFailure { .. } => Severity::Discard,
+            ModelError::NoEquilibrium { .. } | ModelError::IntegratorFailure { .. } | ModelError::OutOfRange { .. } => Severity::Discard,
         }
     }
 }
@@ -910,6 +1011,7 @@ impl fmt::Display for ModelError {
                 write!(f, "no quasi-static equilibrium: {message}")
             }
             ModelError::IntegratorFailure { message } => write!(f, "dynamic integration failed: {message}"),
+            ModelError::OutOfRange { message } => write!(f, "the load is beyond the model's range: {message}"),
         }
     }
 }
@@ -928,4 +1030,8 @@ pub struct SolveReport {
     /// Newton solve found none: it started at the quasi-static seat.
     #[serde(default)]
     pub steady_start_failed: bool,
+    /// The dynamic model was to start in its running state (`startSteady`), but the run-in at
+    /// the initial inputs did not bring input power and dissipation together (or failed).
+    #[serde(default)]
+    pub run_in_unbalanced: bool,
 }

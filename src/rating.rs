@@ -25,6 +25,14 @@
 //!   million revolutions. Its load–life exponent is 4 (scale every lamina load by s: L10r
 //!   scales by s^−4), against ISO 281's 10/3.
 //!
+//! - ISO 76:2006, clause 6 (radial roller bearings): the basic static radial load rating
+//!   C_0r = 44 (1 − D_we cos α / D_pw) i Z L_we D_we cos α in N and mm, the load that makes a
+//!   calculated contact stress of 4000 MPa at the centre of the most heavily loaded roller
+//!   contact (a permanent deformation of about 1e-4 of the roller diameter); the static
+//!   equivalent load of a single-row radial roller bearing with α ≠ 0,
+//!   P_0r = 0.5 F_r + 0.22 cot α F_a, and P_0r = F_r where that is less; with α = 0,
+//!   P_0r = F_r. The static safety factor s_0 = C_0r / P_0r.
+//!
 //! What this product feeds in: the lamina loads are the model's own slice loads on the cone
 //! and on the cup (its contact law, roller profile, diameter deviations, misalignment and
 //! clearance), each raceway with its own normal loads; the standard's edge-stress factor
@@ -83,6 +91,40 @@ pub fn basic_dynamic_load_rating(g: &RatingGeometry) -> f64 {
         * libm::pow(g.l_we * mm * libm::cos(g.alpha), 7.0 / 9.0)
         * libm::pow(g.z as f64, 0.75)
         * libm::pow(g.d_we * mm, 29.0 / 27.0)
+}
+
+/// Calculated contact stress at the centre of the most heavily loaded roller contact under
+/// the basic static load rating (ISO 76 for roller bearings), Pa.
+pub const STATIC_LIMIT_STRESS: f64 = 4000e6;
+
+/// Largest static safety factor the outputs report: a bearing without load (P_0r = 0) has no
+/// static limit, and this finite cap stands for that, so that no infinity leaves the element.
+pub const SAFETY_CAP: f64 = 1e9;
+
+/// Basic static radial load rating C_0r of ISO 76 (N), one row.
+pub fn basic_static_load_rating(g: &RatingGeometry) -> f64 {
+    let mm = 1e3;
+    let cos_a = libm::cos(g.alpha);
+    44.0 * (1.0 - g.gamma()) * g.z as f64 * g.l_we * mm * g.d_we * mm * cos_a
+}
+
+/// Static equivalent radial load P_0r of ISO 76 for radial load `fr` >= 0 and axial load
+/// `fa` >= 0 (N) on a single-row radial roller bearing of contact angle `alpha`.
+pub fn static_equivalent_load(fr: f64, fa: f64, alpha: f64) -> f64 {
+    if alpha <= 0.0 {
+        return fr;
+    }
+    (0.5 * fr + 0.22 / libm::tan(alpha) * fa).max(fr)
+}
+
+/// Static safety factor s_0 = C_0r / P_0r, capped at [`SAFETY_CAP`].
+pub fn static_safety(c0: f64, p0: f64) -> f64 {
+    let s0 = c0 / p0;
+    if s0.is_finite() && s0 >= 0.0 {
+        s0.min(SAFETY_CAP)
+    } else {
+        SAFETY_CAP
+    }
 }
 
 /// Dynamic equivalent radial load P of ISO 281 for radial load `fr` >= 0 and axial load
@@ -239,6 +281,8 @@ pub struct BearingRating {
     pub geometry: RatingGeometry,
     /// Basic dynamic radial load rating (N).
     pub c_r: f64,
+    /// Basic static radial load rating (N).
+    pub c_0r: f64,
     pub laminae: LaminaRatings,
 }
 
@@ -257,6 +301,7 @@ impl BearingRating {
         BearingRating {
             geometry,
             c_r,
+            c_0r: basic_static_load_rating(&geometry),
             laminae: LaminaRatings::new(&geometry, c_r, slices),
         }
     }
@@ -266,6 +311,11 @@ impl BearingRating {
     pub fn life_l10(&self, fr: f64, fa: f64, cone_speed: f64, cup_speed: f64) -> f64 {
         let p = equivalent_load(fr.abs(), fa.abs(), self.geometry.alpha);
         hours(basic_rating_life(self.c_r, p), cone_speed - cup_speed)
+    }
+
+    /// ISO 76 static safety factor under carried radial load `fr` and axial load `fa`.
+    pub fn static_safety(&self, fr: f64, fa: f64) -> f64 {
+        static_safety(self.c_0r, static_equivalent_load(fr.abs(), fa.abs(), self.geometry.alpha))
     }
 
     /// ISO/TS 16281 basic reference rating life (h) from the slice loads (layout of

@@ -102,6 +102,14 @@ pub struct Simulation {
     failure: Option<ModelError>,
     /// The outputs before the current solve, restored if the solve produced non-finite values.
     backup: Outputs,
+    /// The dynamic model's state at the start of the current step, restored if the step fails.
+    dynamic_backup: Option<DynamicState>,
+    /// At fidelity 1: the inputs last found within the model's range, and the quasi-static
+    /// outputs that check computes.
+    range_checked: Option<Inputs>,
+    range_outputs: Outputs,
+    /// The warm start at the start of the current step (fidelity 1), restored if it fails.
+    warm_start_backup: Vec<f64>,
 }
 
 /// The stiffness outputs from the quasi-static linearisation about the cone position in `out`
@@ -114,7 +122,7 @@ fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: 
 }
 
 /// Magic and version of the serialized state format.
-const STATE_MAGIC: &[u8; 8] = b"TRBSTAT4";
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT5";
 
 impl Simulation {
     /// A new element for `bearing`, parameters and inputs at the bearing's defaults.
@@ -146,6 +154,10 @@ impl Simulation {
             stiffness_stale: false,
             failure: None,
             backup: Outputs::new(z),
+            dynamic_backup: None,
+            range_checked: None,
+            range_outputs: Outputs::new(z),
+            warm_start_backup: Vec::new(),
         }
     }
 
@@ -188,7 +200,31 @@ impl Simulation {
     /// Advance from `t` to `t + h` with the inputs held, or ramped at the rates set for this
     /// step, then solve at `t + h`. The caller (FMI adapter) checks that `t` matches the
     /// current time.
+    /// A step that fails leaves the element where the step began (its
+    /// fmi2LastSuccessfulTime): time, inputs, outputs and the dynamic state, so that it can be
+    /// read, saved or stepped again.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
+        let st = &self.state;
+        let start = (st.time, st.cage_angle, st.inputs, st.rates, st.dirty);
+        // at fidelity 1 the range check's quasi-static solve moves the warm start (a solve
+        // at fidelity 0 that fails leaves it as it was)
+        let dynamic = self.state.params.fidelity == Fidelity::Dynamic;
+        if dynamic {
+            self.warm_start_backup.clone_from(&self.state.warm_start);
+        }
+        let result = self.step(t, h);
+        if result.is_err() {
+            let st = &mut self.state;
+            (st.time, st.cage_angle, st.inputs, st.rates, st.dirty) = start;
+            if dynamic {
+                st.warm_start.clone_from(&self.warm_start_backup);
+            }
+            self.failure = None;
+        }
+        result
+    }
+
+    fn step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         self.failure = None;
         self.state.inputs.validate(&self.bearing, &self.state.params)?;
         let ramped = self.state.rates != Inputs::held();
@@ -200,6 +236,15 @@ impl Simulation {
         if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
             self.solve_if_dirty()?;
         }
+        if matches!(self.model, Some(Model::Dynamic { .. })) {
+            // the loads the step starts and ends with, refused before any integration where
+            // the quasi-static model refuses them
+            let start = self.state.inputs;
+            self.check_dynamic_range(&start)?;
+            if ramped {
+                self.check_dynamic_range(&end_inputs)?;
+            }
+        }
         let st = &mut self.state;
         match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs: m, .. } => {
@@ -210,7 +255,12 @@ impl Simulation {
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
-                dynamic.advance_ramped(ds, &st.inputs, ramped.then_some(&st.rates), t + h)?;
+                let backup = self.dynamic_backup.get_or_insert_with(|| ds.clone());
+                backup.copy_from(ds);
+                if let Err(e) = dynamic.advance_ramped(ds, &st.inputs, ramped.then_some(&st.rates), t + h) {
+                    ds.copy_from(backup);
+                    return Err(e);
+                }
                 st.cage_angle = wrap_angle(dynamic.cage_angle(ds));
             }
         }
@@ -219,6 +269,27 @@ impl Simulation {
         st.rates = Inputs::held();
         st.dirty = true;
         self.solve_if_dirty()
+    }
+
+    /// At fidelity 1: refuse `inputs` whose loads the quasi-static model finds beyond the
+    /// model's range (`model::load_within_range`, or no equilibrium because the displacements
+    /// run away), with its message. Other failures of the quasi-static solve do not refuse: the
+    /// dynamic model follows states (a bearing not seated, rollers leaving their contacts)
+    /// that have no static equilibrium. Inputs checked once are not checked again.
+    fn check_dynamic_range(&mut self, inputs: &Inputs) -> Result<(), ModelError> {
+        if self.range_checked.as_ref() == Some(inputs) {
+            return Ok(());
+        }
+        let Some(Model::Dynamic { qs, .. }) = self.model.as_mut() else {
+            return Ok(());
+        };
+        let st = &mut self.state;
+        match qs.solve(inputs, st.cage_angle, &mut st.warm_start, &mut self.range_outputs) {
+            Err(e @ ModelError::OutOfRange { .. }) => return Err(e),
+            Ok(_) | Err(_) => {}
+        }
+        self.range_checked = Some(*inputs);
+        Ok(())
     }
 
     /// The inputs at the end of a step of length `h` from now.
@@ -258,6 +329,18 @@ impl Simulation {
             _ => {}
         }
         self.stiffness_stale = false;
+    }
+
+    /// The warnings whose conditions hold now (`warnings.rs`), as a set of bits.
+    pub fn warnings(&self) -> u32 {
+        let st = &self.state;
+        crate::warnings::active(&self.bearing, &st.params, &st.report, &st.outputs, &st.inputs)
+    }
+
+    /// The message of warning `w` with the numbers that hold now.
+    pub fn warning_message(&self, w: crate::warnings::Warning) -> String {
+        let st = &self.state;
+        crate::warnings::message(w, st.time, &self.bearing, &st.outputs, &st.inputs)
     }
 
     /// Kinetic energy stored in the moving bodies (J): the dynamic model's rollers, cage and
@@ -327,7 +410,14 @@ impl Simulation {
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs, linear } => {
-                let report = qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
+                // a refused solve may have written outputs: the last valid ones are kept
+                let report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
+                    Ok(report) => report,
+                    Err(e) => {
+                        st.outputs.copy_from(&self.backup);
+                        return Err(e);
+                    }
+                };
                 for j in 0..z {
                     st.outputs.azimuth[j] = roller_azimuth(st.cage_angle, j, z);
                 }
@@ -338,15 +428,30 @@ impl Simulation {
                 let mut report = st.report;
                 if st.dynamic.is_none() {
                     // Start from the quasi-static solution (seated rollers, epicyclic speeds).
-                    report = qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs)?;
+                    report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
+                        Ok(report) => report,
+                        Err(e) => {
+                            st.outputs.copy_from(&self.backup);
+                            return Err(e);
+                        }
+                    };
+                    self.range_checked = Some(st.inputs);
                     let mut start = dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time);
-                    if st.params.start_steady && dynamic.runs_steadily(&st.inputs) {
-                        // in the steady running state when there is one (dynamic/steady.rs)
-                        report.steady_start_failed = dynamic.settle(&mut start, &st.inputs).is_err();
+                    if st.params.start_steady && !st.params.start_from_rest && st.inputs.relative_speed() != 0.0 {
+                        // in the steady running state when there is one (dynamic/steady.rs),
+                        // else in the running state reached at the initial inputs (run_in.rs)
+                        let steady = dynamic.runs_steadily(&st.inputs) && {
+                            report.steady_start_failed = dynamic.settle(&mut start, &st.inputs).is_err();
+                            !report.steady_start_failed
+                        };
+                        if !steady {
+                            report.run_in_unbalanced = !dynamic.run_in(&mut start, &st.inputs).is_ok_and(|r| r.balanced);
+                        }
                     }
                     st.dynamic = Some(start);
                 }
                 dynamic.write_outputs(st.dynamic.as_ref().expect("dynamic state"), &st.inputs, &mut st.outputs);
+                st.outputs.film_ratio_raceway = qs.film_ratio_output(dynamic.slice_loads(), &st.inputs);
                 self.stiffness_stale = true;
                 report
             }
@@ -371,6 +476,7 @@ impl Simulation {
 
     fn parameter_changed(&mut self) {
         self.failure = None;
+        self.range_checked = None;
         self.model = None;
         self.state.dynamic = None;
         self.state.warm_start.clear();
@@ -432,6 +538,7 @@ impl Simulation {
             var::CONTACT_DAMPING => p.contact_damping,
             var::CONE_MASS => p.cone_mass,
             var::MAX_STEP => p.max_step,
+            var::WORK_BUDGET => p.work_budget,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -465,6 +572,10 @@ impl Simulation {
             var::RATING_C => o.rating_c,
             var::LIFE_L10 => o.life_l10,
             var::LIFE_L10R => o.life_l10r,
+            var::RATING_C0 => o.rating_c0,
+            var::SAFETY_S0 => o.safety_s0,
+            var::PRESSURE_MAX => o.pressure_max,
+            var::FILM_RATIO_RACEWAY => o.film_ratio_raceway,
             var::OIL_VISCOSITY => o.oil_viscosity,
             v @ var::STIFFNESS_1_1..=var::STIFFNESS_5_5 => o.stiffness[(v - var::STIFFNESS_1_1) as usize],
             var::TILT_MAX => o.tilt_max,
@@ -540,6 +651,7 @@ impl Simulation {
             var::CONTACT_DAMPING => &mut p.contact_damping,
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
+            var::WORK_BUDGET => &mut p.work_budget,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };
@@ -763,6 +875,7 @@ impl Simulation {
         let same_params = s.state.params == self.state.params;
         self.state = s.state;
         self.failure = None;
+        self.range_checked = None;
         if !same_params {
             self.model = None;
         }

@@ -154,14 +154,7 @@ pub fn prepare(scenario: &Scenario) -> Result<Simulation, CliError> {
     let t0 = scenario.time(0);
     let u: Vec<f64> = scenario.inputs.iter().map(|(_, s)| s.at(t0)).collect();
     set_inputs(&mut sim, scenario, &u)?;
-    let report = sim.initialize(t0).map_err(|e| model_error(e, None))?;
-    if report.steady_start_failed {
-        // as the FMU logs it
-        eprintln!(
-            "warning: startSteady: no steady running state found (Newton on the dynamic equations did not converge); \
-             the dynamic model starts at the quasi-static seat and its start-up transient is simulated"
-        );
-    }
+    sim.initialize(t0).map_err(|e| model_error(e, None))?;
     Ok(sim)
 }
 
@@ -182,6 +175,8 @@ fn run_prepared<W: Write>(
     let mut rows = 0usize;
     let result = (|| -> Result<(), CliError> {
         sim.outputs().map_err(|e| model_error(e, Some(format!("at t = {t0:?}"))))?;
+        let mut warned = 0;
+        print_warnings(&sim, &mut warned);
         write_row(&mut line, &mut sim, scenario, t0, &u)?;
         w.write_all(line.as_bytes()).map_err(io)?;
         rows += 1;
@@ -192,6 +187,7 @@ fn run_prepared<W: Write>(
             let t_next = step(&mut sim, scenario, &mut u, k)?;
             sim.outputs()
                 .map_err(|e| model_error(e, Some(format!("at t = {t_next:?}: solving for the inputs u({t_next:?}) failed"))))?;
+            print_warnings(&sim, &mut warned);
             write_row(&mut line, &mut sim, scenario, t_next, &u)?;
             w.write_all(line.as_bytes()).map_err(io)?;
             rows += 1;
@@ -213,6 +209,16 @@ fn run_prepared<W: Write>(
         columns: 1 + scenario.inputs.len() + scenario.outputs.len(),
         wall: started.elapsed(),
     })
+}
+
+/// Print each warning whose condition holds now and that `warned` (a set of causes) does not
+/// hold yet, as the FMU logs it: once per run.
+fn print_warnings(sim: &Simulation, warned: &mut u32) {
+    let new = sim.warnings() & !*warned;
+    *warned |= new;
+    for w in trb::warnings::Warning::ALL.into_iter().filter(|w| new & w.bit() != 0) {
+        eprintln!("warning: {}", sim.warning_message(w));
+    }
 }
 
 pub fn set_inputs(sim: &mut Simulation, scenario: &Scenario, u: &[f64]) -> Result<(), CliError> {

@@ -98,9 +98,10 @@ pub enum Failure {
     /// Fixed-step method: the local error estimate exceeded the tolerance by the factor
     /// `estimate` (unstable or far too long a step `h`).
     FixedStepTooLong { t: f64, h: f64, estimate: f64 },
-    /// More right-hand sides than the budget for one interval (the automatic integrator's
-    /// limit on Rosenbrock-W); `t` and the state are those of the last accepted step.
-    OverBudget { t: f64 },
+    /// More right-hand sides than the budget for one interval (the doStep's work budget, or the
+    /// automatic integrator's limit on Rosenbrock-W); `t` and the state are those of the last
+    /// accepted step, `h` the step the method was trying.
+    OverBudget { t: f64, h: f64 },
 }
 
 impl Failure {
@@ -127,6 +128,8 @@ pub struct Dopri5 {
     pub max_step: f64,
     /// Steps allowed per call of `integrate`.
     pub step_budget: u64,
+    /// Right-hand sides one call may evaluate before it stops with `Failure::OverBudget`.
+    pub rhs_budget: u64,
 }
 
 impl Dopri5 {
@@ -140,6 +143,7 @@ impl Dopri5 {
             rtol,
             max_step,
             step_budget: 50_000_000,
+            rhs_budget: u64::MAX,
         }
     }
 
@@ -159,22 +163,24 @@ impl Dopri5 {
         fsal: &mut Vec<f64>,
     ) -> Result<(), Failure> {
         let n = y.len();
+        let rhs_at_start = counters.rhs;
         if fsal.len() == n {
             self.k[0].copy_from_slice(fsal);
         } else {
             let mut f = f;
             f(*t, y, &mut self.k[0]);
             counters.rhs += 1;
-            let r = self.run(f, t, y, t_end, step, counters);
+            let r = self.run(f, t, y, t_end, step, counters, rhs_at_start);
             fsal.clear();
             fsal.extend_from_slice(&self.k[0]);
             return r;
         }
-        let r = self.run(f, t, y, t_end, step, counters);
+        let r = self.run(f, t, y, t_end, step, counters, rhs_at_start);
         fsal.copy_from_slice(&self.k[0]);
         r
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn run<F: FnMut(f64, &[f64], &mut [f64])>(
         &mut self,
         mut f: F,
@@ -183,6 +189,7 @@ impl Dopri5 {
         t_end: f64,
         step: &mut StepControl,
         counters: &mut Counters,
+        rhs_at_start: u64,
     ) -> Result<(), Failure> {
         let n = y.len();
         let StepControl { h, err_prev } = step;
@@ -204,6 +211,9 @@ impl Dopri5 {
             }
             if steps_here >= self.step_budget {
                 return Err(Failure::TooManySteps { t: *t, steps: steps_here });
+            }
+            if counters.rhs - rhs_at_start + 6 > self.rhs_budget {
+                return Err(Failure::OverBudget { t: *t, h: hs });
             }
             // stages
             let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;

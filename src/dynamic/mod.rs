@@ -35,6 +35,7 @@ pub mod integrator;
 pub mod jacobian;
 pub mod multistep;
 pub mod rosenbrock;
+pub mod run_in;
 pub mod steady;
 pub mod switching;
 
@@ -75,6 +76,22 @@ pub struct DynamicState {
     /// The automatic integrator's choice and its memory (`integrator` = 3).
     #[serde(default)]
     pub switch: switching::MethodSwitch,
+}
+
+impl DynamicState {
+    /// Make this a copy of `other`, reusing this one's storage (no allocation once the
+    /// vectors have their lengths): the element keeps the state at a step's start this way to
+    /// return to it when the step fails.
+    pub fn copy_from(&mut self, other: &DynamicState) {
+        self.y.clone_from(&other.y);
+        self.t = other.t;
+        self.step = other.step;
+        self.counters = other.counters;
+        self.fsal.clone_from(&other.fsal);
+        self.fsal_inputs = other.fsal_inputs;
+        self.memory.clone_from(&other.memory);
+        self.switch = other.switch;
+    }
 }
 
 /// Per-roller results of one evaluation, for the outputs.
@@ -459,21 +476,31 @@ impl Dynamic {
             }
         }
         let t0 = state.t;
+        let budget = crate::model::step_work_budget(self.p.work_budget, t_end - t0);
         let (mut model, ig) = self.model(inputs, rates.map(|r| (t0, r)));
         let mut t = state.t;
         let result = match ig {
-            Integrator::Dopri5(ig) => run_explicit(ig, &mut model, &mut t, state, t_end),
-            Integrator::MilneHamming(ig) => ig.integrate(
-                |t, y, dy| model.rhs(t, y, dy),
-                &mut t,
-                &mut state.y,
-                t_end,
-                &mut state.counters,
-                &mut state.fsal,
-                &mut state.memory,
-            ),
-            Integrator::Rosenbrock(ig) => run_implicit(ig, &mut model, &mut t, state, t_end),
-            Integrator::Automatic { explicit, implicit } => run_automatic(explicit, implicit, &mut model, &mut t, state, t_end),
+            Integrator::Dopri5(ig) => {
+                ig.rhs_budget = budget;
+                run_explicit(ig, &mut model, &mut t, state, t_end)
+            }
+            Integrator::MilneHamming(ig) => {
+                ig.rhs_budget = budget;
+                ig.integrate(
+                    |t, y, dy| model.rhs(t, y, dy),
+                    &mut t,
+                    &mut state.y,
+                    t_end,
+                    &mut state.counters,
+                    &mut state.fsal,
+                    &mut state.memory,
+                )
+            }
+            Integrator::Rosenbrock(ig) => {
+                ig.rhs_budget = budget;
+                run_implicit(ig, &mut model, &mut t, state, t_end)
+            }
+            Integrator::Automatic { explicit, implicit } => run_automatic(explicit, implicit, &mut model, &mut t, state, t_end, budget),
         };
         state.t = t;
         if let (Some(end), Ok(())) = (end_inputs, &result) {
@@ -489,7 +516,12 @@ impl Dynamic {
                 ),
                 Failure::NotFinite { t } => format!("the state became non-finite at t = {t:.9} s"),
                 Failure::TooManySteps { t, steps } => format!("more than {steps} steps in one communication interval (t = {t:.9} s)"),
-                Failure::OverBudget { t } => format!("the right-hand-side budget of one interval ran out at t = {t:.9} s"),
+                Failure::OverBudget { t, h } => format!(
+                    "the work budget of {budget} right-hand-side evaluations for this step (workBudget = {:.3e} per simulated second) ran out at t = {t:.9} s, {:.1} % of the way from {t0:.9} s to {t_end:.9} s, with the integrator at steps of {h:.3e} s: the transient is too stiff or too fast to follow at tolerance {:.1e}; a restored earlier state retried with shorter communication steps, inputs ramped over the step, a larger workBudget or a looser tolerance can pass it",
+                    self.p.work_budget,
+                    100.0 * (t - t0) / (t_end - t0),
+                    self.p.tolerance.max(MIN_TOLERANCE)
+                ),
                 Failure::FixedStepTooLong { t, h, estimate } => format!(
                     "the fixed step {h:.3e} s (maxStep) is unstable or too long: the local error estimate (Milne) is {estimate:.1e} times the tolerance {:.1e} at t = {t:.9} s; reduce maxStep",
                     self.p.tolerance.max(MIN_TOLERANCE)
@@ -539,6 +571,9 @@ impl Dynamic {
         let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
         out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
         out.life_l10r = self.rating.life_l10r(&self.eval.slice_loads, inputs.speed, inputs.cup_speed);
+        out.rating_c0 = self.rating.c_0r;
+        out.safety_s0 = self.rating.static_safety(fr, out.reaction_fx);
+        out.pressure_max = g.max_raceway_pressure(&self.eval.slice_loads);
         out.cage_speed = contacts::cage_speed(g, &self.p, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
         // With the cup turning too it is the torque between the rings: in steady running the
@@ -606,6 +641,11 @@ impl Dynamic {
         contacts::cage_angle(&self.g, &self.p, &state.y)
     }
 
+    /// The slice loads of the last evaluation (per roller the cone's slices, then the cup's).
+    pub fn slice_loads(&self) -> &[f64] {
+        &self.eval.slice_loads
+    }
+
     /// Right-hand side at `state` (for tests and benchmarks).
     pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
         self.eval.run(&self.g, &self.p, &self.c, inputs, y, Some(dy));
@@ -642,7 +682,7 @@ fn run_implicit(ig: &mut RosenbrockW, model: &mut Model, t: &mut f64, state: &mu
 /// One interval of the automatic integrator (`switching.rs`): Rosenbrock-W on its budget
 /// while it is the chosen method, Dormand–Prince for the rest of the interval where it runs
 /// over or fails, or for the whole interval when it is the chosen one; the choice for the next
-/// interval from the cost of this one.
+/// interval from the cost of this one. Both together spend at most `budget` right-hand sides.
 fn run_automatic(
     explicit: &mut Dopri5,
     implicit: &mut RosenbrockW,
@@ -650,12 +690,21 @@ fn run_automatic(
     t: &mut f64,
     state: &mut DynamicState,
     t_end: f64,
+    budget: u64,
 ) -> Result<(), Failure> {
     let mut result = Ok(());
+    let rhs_at_start = state.counters.rhs;
     if state.switch.implicit {
         let (t0, rhs0) = (*t, state.counters.rhs);
-        implicit.rhs_budget = state.switch.implicit_budget(t_end - *t);
+        let own = state.switch.implicit_budget(t_end - *t);
+        implicit.rhs_budget = own.min(budget);
         result = run_implicit(implicit, model, t, state, t_end);
+        if let Err(Failure::OverBudget { .. }) = result {
+            if own >= budget {
+                // the step's whole budget is spent: nothing is left for the explicit method
+                return result;
+            }
+        }
         let sw = &mut state.switch;
         if sw.rho_jacobians != state.counters.jacobians {
             sw.rho = implicit.spectral_radius();
@@ -678,6 +727,7 @@ fn run_automatic(
     }
     if !state.switch.implicit && *t < t_end && result.is_ok() {
         let (t0, rhs0) = (*t, state.counters.rhs);
+        explicit.rhs_budget = budget.saturating_sub(rhs0 - rhs_at_start);
         result = run_explicit(explicit, model, t, state, t_end);
         if result.is_ok() && state.switch.after_interval((state.counters.rhs - rhs0) as f64 / (*t - t0)) {
             state.switch.switch(&mut state.step);

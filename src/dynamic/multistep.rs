@@ -38,6 +38,8 @@ pub struct MilneHamming {
     k: [Vec<f64>; 3],
     ys: Vec<f64>,
     p: Vec<f64>,
+    /// Right-hand sides one call may evaluate before it stops with `Failure::OverBudget`.
+    pub rhs_budget: u64,
 }
 
 /// Memory layout: [h, history count, p - c, y_{n-1}, y_{n-2}, y_{n-3}, f_{n-1}, f_{n-2}].
@@ -64,6 +66,7 @@ impl MilneHamming {
             k: std::array::from_fn(|_| vec![0.0; n]),
             ys: vec![0.0; n],
             p: vec![0.0; n],
+            rhs_budget: u64::MAX,
         }
     }
 
@@ -100,8 +103,13 @@ impl MilneHamming {
             counters.rhs += 1;
         }
         let t0 = *t;
+        let rhs_at_start = counters.rhs;
         for step in 0..steps as u64 {
             let have = memory[1] as usize;
+            // a Gill step takes 4 right-hand sides, a Milne-Hamming step 2
+            if counters.rhs - rhs_at_start + 4 > self.rhs_budget {
+                return Err(Failure::OverBudget { t: *t, h });
+            }
             let ts = t0 + step as f64 * h;
             let estimate = if have < 3 {
                 self.gill(&mut f, ts, y, h, fsal, memory, counters);

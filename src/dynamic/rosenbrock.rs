@@ -357,7 +357,7 @@ impl RosenbrockW {
         let rhs_at_start = counters.rhs;
         while *t < t_end {
             if counters.rhs - rhs_at_start > self.rhs_budget {
-                return Err(Failure::OverBudget { t: *t });
+                return Err(Failure::OverBudget { t: *t, h: *h });
             }
             let remaining = t_end - *t;
             if remaining <= h_floor(t_end) {

@@ -13,6 +13,7 @@ use crate::model::{ModelError, Severity, SolveReport};
 use crate::model_description;
 use crate::simulation::{AccessError, Simulation};
 use crate::variables::{self as var, Causality, VarType, Variability};
+use crate::warnings::Warning;
 use std::ffi::CStr;
 use std::os::raw::c_char;
 
@@ -27,10 +28,8 @@ pub struct Instance {
     clock: Clock,
     /// FMU states handed out by this instance and not freed yet.
     snapshots: Vec<*mut Snapshot>,
-    /// The contact-law extrapolation warning was logged already.
-    warned_extrapolation: bool,
-    /// The failed steady start (`startSteady`) was logged already.
-    warned_steady_start: bool,
+    /// The warnings logged already (`warnings.rs`: each cause once per instance).
+    warned: u32,
 }
 
 /// Rounding noise allowed when comparing communication points.
@@ -135,8 +134,7 @@ impl Instance {
             sim: Simulation::new(bearing),
             clock: Clock::NEW,
             snapshots: Vec::new(),
-            warned_extrapolation: false,
-            warned_steady_start: false,
+            warned: 0,
         }))
     }
 
@@ -228,21 +226,12 @@ impl Instance {
                 ),
             );
         }
-        if report.steady_start_failed && !self.warned_steady_start {
-            self.warned_steady_start = true;
-            self.log.warning(format_args!(
-                "t = {}: startSteady: no steady running state found (Newton on the dynamic equations did not converge); \
-                 the dynamic model starts at the quasi-static seat and its start-up transient is simulated",
-                self.clock.time
-            ));
-        }
-        if report.contact_law_extrapolated && !self.warned_extrapolation {
-            self.warned_extrapolation = true;
-            self.log.warning(format_args!(
-                "t = {}: a slice interference exceeds the validity range of the line-contact law; \
-                 results are extrapolated (reported once per instance)",
-                self.clock.time
-            ));
+        let new = self.sim.warnings() & !self.warned;
+        if new != 0 {
+            self.warned |= new;
+            for w in Warning::ALL.into_iter().filter(|w| new & w.bit() != 0) {
+                self.log.warning(format_args!("{}", self.sim.warning_message(w)));
+            }
         }
     }
 
@@ -388,8 +377,7 @@ impl Instance {
         self.sim.reset();
         self.clock = Clock::NEW;
         self.machine = Machine::Alive(State::Instantiated);
-        self.warned_extrapolation = false;
-        self.warned_steady_start = false;
+        self.warned = 0;
         self.log.event(format_args!("fmi2Reset"));
         FMI2_OK
     }
@@ -604,7 +592,17 @@ impl Instance {
                 self.after_solve(report);
                 FMI2_OK
             }
-            Err(e) => self.model_failure(F, &e, Machine::Alive(State::StepFailed)),
+            Err(e) => {
+                // the element is back where the step began (`Simulation::do_step`)
+                let status = self.model_failure(F, &e, Machine::Alive(State::StepFailed));
+                if status == FMI2_DISCARD {
+                    self.log.discard(format_args!(
+                        "{F}: the step from t = {now} to {end} is not taken; the FMU stays at t = {now} (fmi2LastSuccessfulTime), \
+                         and fmi2SetFMUstate with an earlier state allows a retry"
+                    ));
+                }
+                status
+            }
         }
     }
 

@@ -289,6 +289,25 @@ impl FrictionModel {
 
     /// Whether [`FrictionModel::evaluate`] needs the converged slice loads (`traction` = 0
     /// with EHL: the traction law is evaluated slice by slice).
+    /// The film ratio Λ = h / σ of the raceway slice `k` of `line` (with its `weights`)
+    /// carrying load `q` at cone speed `speed` relative to the cup: Hamrock's central film
+    /// reduced by inlet shear heating, as the traction law takes it, over the composite
+    /// roughness. Without roughness, or without load or entrainment, infinite or 0.
+    pub fn film_ratio(&self, line: &ContactLine, weights: &SliceWeights, k: usize, q: f64, speed: f64) -> f64 {
+        let w = q / self.slice_len;
+        let u_e = speed.abs() * weights.entrain[k];
+        if !(w > 0.0) {
+            return f64::INFINITY;
+        }
+        let e_prime = self.lubricant.e_prime;
+        let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
+        let p_h = if b > 0.0 { 2.0 * w / (std::f64::consts::PI * b) } else { 0.0 };
+        let v_s = speed.abs() * weights.slide[k];
+        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 0.0 };
+        let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, slide_roll);
+        heating * tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w) / self.sigma
+    }
+
     pub fn needs_slice_loads(&self, lubrication: Lubrication) -> bool {
         lubrication == Lubrication::Ehl && self.traction == tr::TractionLaw::ThermalEyring
     }

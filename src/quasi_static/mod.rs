@@ -28,7 +28,7 @@ pub mod studies;
 use crate::bearing::Bearing;
 use crate::contact::{self, LineLaw};
 use crate::geometry::Geometry;
-use crate::model::{Inputs, LoadCausality, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use crate::model::{load_within_range, Inputs, LoadCausality, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
 use nalgebra::{Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 use std::f64::consts::TAU;
 
@@ -207,6 +207,9 @@ fn spatial_interpolate(z: usize, shift: f64, src: &[f64], dst: &mut [f64]) {
         }
     }
 }
+
+/// The film ratio output without a loaded raceway contact (a finite stand-in for infinity).
+pub const FILM_RATIO_CAP: f64 = 1e9;
 
 /// Maximum Newton iterations of one solve.
 const MAX_ITERATIONS: u32 = 100;
@@ -1257,7 +1260,7 @@ impl QuasiStatic {
                         r
                     }
                     None => {
-                        *warm = Vec::new();
+                        // the warm start stays as it was: a failed solve changes no state
                         self.x = x;
                         return Err(first);
                     }
@@ -1269,6 +1272,10 @@ impl QuasiStatic {
         // held, so that constant inputs read the table from the start
         let speed_held = warm.len() < block || (warm[n + 1] == now[0] && warm[n + 1 + 10] == now[10]);
         self.write_outputs(&x, inputs, report, speed_held, out);
+        if let Err(e) = load_within_range(out, &report) {
+            self.x = x;
+            return Err(e);
+        }
         if warm.len() == full {
             // this solve's block becomes the previous one
             warm.copy_within(0..block, block);
@@ -1672,8 +1679,9 @@ impl QuasiStatic {
             message.push_str("; with an axial displacement <= 0 the cone is not seated");
         } else if runaway {
             message.push_str(&format!(
-                "; displacements exceeded {limit:.3e} m (5 % of the roller diameter, plus the seating travel of the clearance): the load is beyond the model's range"
+                "; displacements exceeded {limit:.3e} m (5 % of the roller diameter, plus the seating travel of the clearance) without an equilibrium"
             ));
+            return ModelError::OutOfRange { message };
         } else {
             message.push_str(&format!(
                 "; the solver stalled {} equilibrium: the contact state keeps switching between iterations, as at extreme shaft deflections, deep or many lobes, or very few slices; more slices or smaller input steps per communication step may help",
@@ -1766,6 +1774,51 @@ impl QuasiStatic {
         out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
         let loads = &self.slice_load_buffer[..2 * self.geometry.slices * rollers];
         out.life_l10r = self.rating.life_l10r(loads, inputs.speed, inputs.cup_speed);
+        out.rating_c0 = self.rating.c_0r;
+        out.safety_s0 = self.rating.static_safety(fr, out.reaction_fx);
+        out.pressure_max = self.geometry.max_raceway_pressure(loads);
+        out.film_ratio_raceway = self.film_ratio_output(loads, inputs);
+    }
+
+    /// [`QuasiStatic::min_film_ratio`] as the output reports it: finite (at most
+    /// [`FILM_RATIO_CAP`], which stands for no loaded contact), 0 for dry contacts.
+    pub fn film_ratio_output(&self, slice_loads: &[f64], inputs: &Inputs) -> f64 {
+        if self.params.lubrication != Lubrication::Ehl {
+            return 0.0;
+        }
+        let r = self.min_film_ratio(slice_loads, inputs);
+        if r.is_nan() {
+            0.0
+        } else {
+            r.min(FILM_RATIO_CAP)
+        }
+    }
+
+    /// The smallest film ratio Λ = h / σ of the raceway contacts, taken at the most heavily
+    /// loaded slice of the cone and of the cup in `slice_loads` (per roller the cone's slices
+    /// then the cup's): the film thins with load, so that is where the asperities meet first.
+    /// Infinite without lubrication by oil (dry Coulomb) or without load.
+    pub fn min_film_ratio(&self, slice_loads: &[f64], inputs: &Inputs) -> f64 {
+        if self.params.lubrication != Lubrication::Ehl {
+            return f64::INFINITY;
+        }
+        let g = &self.geometry;
+        let ns = g.slices;
+        let (mut cone, mut cup) = ((0, 0.0), (0, 0.0));
+        for roller in slice_loads.chunks_exact(2 * ns) {
+            for k in 0..ns {
+                if roller[k] > cone.1 {
+                    cone = (k, roller[k]);
+                }
+                if roller[ns + k] > cup.1 {
+                    cup = (k, roller[ns + k]);
+                }
+            }
+        }
+        let f = &self.friction;
+        let speed = inputs.relative_speed();
+        f.film_ratio(&g.cone, &f.cone_weights, cone.0, cone.1, speed)
+            .min(f.film_ratio(&g.cup, &f.cup_weights, cup.0, cup.1, speed))
     }
 
     /// Slice loads of roller `j` at the solution `x` (cone, cup), for the friction model and tests.

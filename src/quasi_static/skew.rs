@@ -728,7 +728,7 @@ impl QuasiStatic {
             }
         };
         if !converged {
-            *warm = Vec::new();
+            // the warm start stays as it was: a failed solve changes no state
             return Err(ModelError::NoEquilibrium {
                 message: format!(
                     "skew model: Newton solver stopped after {iterations} iterations with relative residual {:.3e} (mu = {}, pocket clearance = {} m)",
@@ -745,6 +745,7 @@ impl QuasiStatic {
             ..SolveReport::default()
         };
         self.write_skew_outputs(&x, &evals, inputs, report, out);
+        crate::model::load_within_range(out, &report)?;
         x.push(cage_angle);
         *warm = x;
         Ok(report)

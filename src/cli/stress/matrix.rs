@@ -1502,9 +1502,11 @@ pub fn clarity(message: &str) -> Result<(), String> {
         return Err(format!("internal error: {m}"));
     }
     let names_variable = m.contains("input ") || m.contains("parameter ") || m.contains("value reference");
-    // The dynamic integrator's refusals: a reason after the statistics, or the step budget.
+    // The solvers' refusals: a reason after the statistics, or the step budget; loads beyond
+    // the model's range, with the reason.
     let gives_reason = (m.contains("no quasi-static equilibrium") && m.contains("; "))
-        || (m.contains("dynamic integration failed") && (m.contains("; ") || m.contains("steps in one communication interval")));
+        || (m.contains("dynamic integration failed") && (m.contains("; ") || m.contains("steps in one communication interval")))
+        || m.contains("the load is beyond the model's range: ");
     if names_variable || gives_reason {
         Ok(())
     } else {
