@@ -17,7 +17,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 unset CARGO_TARGET_DIR
 
 CARGO_FUZZ_VERSION=0.13.2
-TARGETS=(bearing_json fmi_calls)
+TARGETS=(bearing_json fmi_calls dynamic_jumps)
 
 if [ "${1:-}" = "--libfuzzer" ]; then
     seconds="${2:-300}"

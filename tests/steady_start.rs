@@ -112,9 +112,11 @@ fn other_cases_start_run_in_where_the_seat_start_leads() {
         let speed = on.inputs().speed;
         let (start, seat) = (on.last_outputs().clone(), off.last_outputs().clone());
         // the seat breaks the power balance (a third of the torque), the run-in start keeps it
+        // as running does: within 1.5 % (under the misalignment the torque swings by that
+        // much, at about 200 Hz, in running)
         let balance = |o: &Outputs| relative(o.friction_torque * speed, o.power_loss);
         assert!(balance(&seat) > 0.3, "{set:?}: seat {}", balance(&seat));
-        assert!(balance(&start) < 0.01, "{set:?}: run-in start {}", balance(&start));
+        assert!(balance(&start) < 0.02, "{set:?}: run-in start {}", balance(&start));
         assert!(!on.last_report().run_in_unbalanced, "{set:?}");
         // where the rollers started: roller 1 at the cage's start angle, within its pocket play
         assert!(

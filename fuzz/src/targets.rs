@@ -14,13 +14,14 @@ use trb::simulation::Simulation;
 use trb::variables::{self as var, VarType};
 
 /// The names of the targets.
-pub const TARGETS: [&str; 2] = ["bearing_json", "fmi_calls"];
+pub const TARGETS: [&str; 3] = ["bearing_json", "fmi_calls", "dynamic_jumps"];
 
 /// Run target `name` on `data`.
 pub fn run(name: &str, data: &[u8]) {
     match name {
         "bearing_json" => bearing_json(data),
         "fmi_calls" => fmi_calls(data),
+        "dynamic_jumps" => dynamic_jumps(data),
         _ => panic!("unknown fuzz target {name}"),
     }
 }
@@ -369,5 +370,118 @@ pub fn fmi_calls(data: &[u8]) {
         }
     }
     unsafe { fmi2FreeInstance(c) };
+    drop(sink);
+}
+
+// ---------------------------------------------------------------------------------------
+// Target 3: random input jumps on a dynamic instance, each doStep bounded
+// ---------------------------------------------------------------------------------------
+
+/// Wall-clock bound of one doStep (s): the work budget stops a 1 ms step after 100 000
+/// right-hand sides, about 4 s for the 32008 on one core of the reference machine; the bound
+/// leaves a factor of 5 for a slower or busier machine. A step that takes longer is a
+/// finding: the budget did not hold.
+pub const STEP_WALL_BOUND: f64 = 20.0;
+
+/// Read a value from 10^lo to 10^hi times `scale`, log-uniformly, with a sign.
+fn magnitude(r: &mut Reader, scale: f64, lo: f64, hi: f64) -> f64 {
+    let x = r.u8() as f64 / 255.0;
+    let sign = if r.u8() & 1 == 0 { 1.0 } else { -1.0 };
+    sign * scale * 10f64.powf(lo + (hi - lo) * x)
+}
+
+/// Interpret `data` as up to three input jumps on a fidelity-1 instance of the 32008 preset
+/// (its integrator and slice count from the input): loads from 0.01 to 100 times C_r in any
+/// direction, speeds up to twice the limiting speed either way, shaft deflections up to
+/// 0.3 deg, each held over a doStep of 0.1 or 1 ms. Every doStep must return within
+/// [`STEP_WALL_BOUND`] with OK, Warning or Discard; after a Discard the instance is still at
+/// the step's start (fmi2LastSuccessfulTime) and the state saved after the last good step
+/// restores it; every output is finite, whatever the status.
+pub fn dynamic_jumps(data: &[u8]) {
+    let f = fixture();
+    let bearing = Bearing::from_json(PRESETS.iter().find(|(n, _)| *n == "32008").expect("preset").1).expect("valid");
+    let c_r = trb::rating::BearingRating::new(&bearing, bearing.slices).c_r;
+    let n_lim = trb::warnings::limiting_speed(&bearing);
+    let sink = Box::<Sink>::default();
+    let cb = Fmi2CallbackFunctions {
+        logger: Some(logger()),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: (&*sink as *const Sink).cast_mut().cast(),
+    };
+    let mut r = Reader::new(data);
+    let logging_on = (r.u8() & 1) as c_int;
+    let c = unsafe {
+        fmi2Instantiate(
+            c"jumps".as_ptr(),
+            FMI2_CO_SIMULATION,
+            f.guid.as_ptr(),
+            f.uri.as_ptr(),
+            &cb,
+            0,
+            logging_on,
+        )
+    };
+    assert!(!c.is_null(), "instantiation failed");
+    let finite_outputs = |c: Fmi2Component| {
+        let mut values = vec![0.0; f.reals.len()];
+        let status = unsafe { fmi2GetReal(c, f.reals.as_ptr(), f.reals.len(), values.as_mut_ptr()) };
+        assert!((0..=2).contains(&status), "fmi2GetReal returned {status}");
+        assert!(values.iter().all(|v| v.is_finite()), "non-finite outputs");
+    };
+    unsafe {
+        let set_i = |vr: u32, v: i32| assert_eq!(fmi2SetInteger(c, &vr, 1, &v), FMI2_OK);
+        set_i(var::FIDELITY, 1);
+        set_i(var::INTEGRATOR, (r.u8() % 4) as i32);
+        set_i(var::SLICES, [5, 10, 20][(r.u8() % 3) as usize]);
+        assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), FMI2_OK);
+        assert_eq!(fmi2EnterInitializationMode(c), FMI2_OK);
+        let status = fmi2ExitInitializationMode(c);
+        assert!((0..=3).contains(&status), "fmi2ExitInitializationMode returned {status}");
+        if status > FMI2_WARNING {
+            fmi2FreeInstance(c);
+            return;
+        }
+        let mut saved: Fmi2FmuState = std::ptr::null_mut();
+        assert_eq!(fmi2GetFMUstate(c, &mut saved), FMI2_OK);
+        for _ in 0..3 {
+            if r.done() {
+                break;
+            }
+            let inputs = [
+                (var::FX, magnitude(&mut r, c_r, -2.0, 2.0).abs()),
+                (var::FY, magnitude(&mut r, c_r, -2.0, 2.0)),
+                (var::FZ, if r.u8() & 1 == 0 { 0.0 } else { magnitude(&mut r, c_r, -2.0, 2.0) }),
+                (var::SPEED, 2.0 * n_lim * (r.u8() as f64 - 127.5) / 127.5),
+                (var::XI, 0.3f64.to_radians() * (r.u8() as f64 - 127.5) / 127.5),
+            ];
+            for (vr, v) in inputs {
+                assert_eq!(fmi2SetReal(c, &vr, 1, &v), FMI2_OK, "fmi2SetReal {vr} = {v}");
+            }
+            let mut t = 0.0;
+            assert_eq!(fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut t), FMI2_OK);
+            let h = [1e-4, 1e-3][(r.u8() & 1) as usize];
+            let started = std::time::Instant::now();
+            let status = fmi2DoStep(c, t, h, 1);
+            let wall = started.elapsed().as_secs_f64();
+            assert!(
+                wall < STEP_WALL_BOUND,
+                "a doStep of {h} s took {wall:.1} s (status {status}) with inputs {inputs:?}"
+            );
+            assert!((0..=2).contains(&status), "fmi2DoStep returned {status} with inputs {inputs:?}");
+            finite_outputs(c);
+            if status == FMI2_DISCARD {
+                let mut now = f64::NAN;
+                assert_eq!(fmi2GetRealStatus(c, FMI2_LAST_SUCCESSFUL_TIME, &mut now), FMI2_OK);
+                assert_eq!(now, t, "a refused step moved the time");
+                assert_eq!(fmi2SetFMUstate(c, saved), FMI2_OK, "restoring the last good state");
+            } else {
+                assert_eq!(fmi2GetFMUstate(c, &mut saved), FMI2_OK);
+            }
+        }
+        assert_eq!(fmi2FreeFMUstate(c, &mut saved), FMI2_OK);
+        fmi2FreeInstance(c);
+    }
     drop(sink);
 }

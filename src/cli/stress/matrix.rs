@@ -47,8 +47,7 @@ use trb::variables::{self as var, Causality, VarType};
 #[derive(Debug, Clone)]
 pub struct Preset {
     pub bearing: Bearing,
-    /// Basic static radial load rating C0r (N), ISO 76:
-    /// C0r = 44 (1 - Dwe cos a / Dpw) Z Lwe Dwe cos a (mm, N), a = cup angle.
+    /// Basic static radial load rating C0r (N), ISO 76 (`rating.C0`, `src/rating.rs`).
     pub c0: f64,
     /// Axial load equivalent to C0r (N): P0 = Y0 Fa with Y0 = 0.22 cot a (ISO 76), so
     /// Fa0 = C0r tan a / 0.22. A cylindrical bearing carries no axial load: 0.
@@ -67,15 +66,10 @@ pub struct Preset {
 
 impl Preset {
     pub fn new(bearing: Bearing) -> Preset {
-        let mm = 1e3;
-        let (dwe, lwe, dpw) = (
-            bearing.roller_mean_diameter * mm,
-            bearing.roller_length * mm,
-            bearing.pitch_diameter * mm,
-        );
+        let dpw = bearing.pitch_diameter * 1e3;
         let a = bearing.cup_angle;
         let z = bearing.roller_count as f64;
-        let c0 = 44.0 * (1.0 - dwe * a.cos() / dpw) * z * lwe * dwe * a.cos();
+        let c0 = trb::rating::BearingRating::new(&bearing, bearing.slices).c_0r;
         let fa0 = if bearing.kind == Kind::Tapered { c0 * a.tan() / 0.22 } else { 0.0 };
         let ndm = if bearing.kind == Kind::Tapered { 700_000.0 } else { 3_500_000.0 };
         let n_lim = ndm / dpw * std::f64::consts::PI / 30.0;
@@ -267,6 +261,16 @@ impl Durations {
 /// communication step is left out (both run on the other presets).
 pub const DYNAMIC_TIME_SCALE: &[(&str, f64)] = &[("CRB-TRILOBE", 0.02)];
 
+/// Wall-clock bound of one doStep (s) of a bearing with `z` rollers of `slices` slices. The
+/// work budget (`workBudget`) ends a 1 ms step of the dynamic model after 100 000 right-hand
+/// sides, whose cost goes with the slices in contact: about 7 s for 17 rollers of 20 slices on
+/// one core of the reference machine. The bound leaves a factor of 4 for a slower or busier
+/// machine (the matrix runs cases on every core). A step over it is a failure: the budget did
+/// not hold.
+pub fn step_wall_bound(z: usize, slices: usize) -> f64 {
+    30.0 * ((z * slices) as f64 / (17.0 * 20.0)).max(1.0)
+}
+
 /// Builds the cases of one preset.
 struct Builder<'a> {
     index: usize,
@@ -428,7 +432,54 @@ pub fn cases(fidelity: i32, quick: bool) -> Vec<Case> {
     all
 }
 
+/// Random input jumps over the whole load range: radial loads from 0.01 to 100 times C_r
+/// (log-uniform, any direction in the radial plane), speeds from 0.1 to 1.5 n_lim, a new draw
+/// at every communication point after the first (the preset's operating speed at 0.1 C0),
+/// seeded per preset and case. The axial force of a tapered bearing seats it (one to three
+/// times the seating force) in cases 0 and 1 and is drawn like the radial load in case 2.
+/// Legal jumps are to be taken, the rest refused with a clear message, every step within
+/// [`step_wall_bound`].
+fn jump_cases(b: &mut Builder) {
+    let p = b.p.clone();
+    let c_r = trb::rating::BearingRating::new(&p.bearing, p.bearing.slices).c_r;
+    let start = b.combined(0.1);
+    let at_start = |name: &str| start.iter().find(|(n, _)| *n == name).map_or(0.0, |(_, v)| *v);
+    let (h, steps) = (1e-3, 4);
+    for case in 0..3u64 {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64 ^ ((b.index as u64) << 32 | case);
+        let mut uniform = move || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut load = move || c_r * 10f64.powf(-2.0 + 4.0 * uniform());
+        let mut rows = vec![[at_start("Fx"), at_start("Fy"), at_start("Fz"), at_start("speed")]];
+        for _ in 0..steps {
+            let (fr, angle) = (load(), std::f64::consts::TAU * load() / c_r);
+            let fx = match (p.tapered(), case) {
+                (false, _) => 0.0,
+                (true, 2) => load(),
+                (true, _) => p.seating_fx(fr) * (1.0 + 2.0 * (load() / c_r).fract()),
+            };
+            let speed = p.n_lim * (0.1 + 1.4 * (load() / c_r).fract());
+            rows.push([fx, fr * angle.cos(), fr * angle.sin(), speed]);
+        }
+        let column = |i: usize| Signal::Table(rows.iter().enumerate().map(|(k, r)| (k as f64 * h, r[i])).collect());
+        b.push(
+            "jumps",
+            format!("random jumps {case}, 0.01 to 100 C_r"),
+            vec![],
+            vec![("Fx", column(0)), ("Fy", column(1)), ("Fz", column(2)), ("speed", column(3))],
+            h,
+            steps,
+            Expect::PassOrRefuse,
+        );
+    }
+}
+
 fn preset_cases(b: &mut Builder) {
+    jump_cases(b);
     let p = b.p.clone();
     let tapered = p.tapered();
     let d = b.d;
@@ -1563,6 +1614,10 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
         .map(|v| index_of(&reals, v))
         .collect();
     let i_loaded = ints.iter().position(|v| *v == var::LOADED_ROLLERS).expect("loadedRollers");
+    let slices = match case.params.iter().find(|(n, _)| *n == "slices") {
+        Some((_, Value::Integer(s))) => (*s).max(1) as usize,
+        _ => presets()[case.preset].bearing.slices,
+    };
 
     let inputs: Vec<(u32, &Signal)> = case
         .inputs
@@ -1632,7 +1687,16 @@ fn drive<E: Element>(case: &Case, el: &mut E, z: usize, tapered: bool, rec: &mut
         let t = t0 + k as f64 * case.h;
         if k > 0 {
             let tp = t0 + (k - 1) as f64 * case.h;
-            if let Err(r) = el.step(tp, case.h) {
+            let started = std::time::Instant::now();
+            let stepped = el.step(tp, case.h);
+            let wall = started.elapsed().as_secs_f64();
+            let bound = step_wall_bound(z, slices);
+            if wall > bound {
+                return Outcome::Failed {
+                    reason: format!("the doStep from t = {tp} took {wall:.1} s, more than {bound:.0} s"),
+                };
+            }
+            if let Err(r) = stepped {
                 return refused(el, tp, r, &mut rv, &mut iv);
             }
             rec.steps += 1;
