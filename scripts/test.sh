@@ -106,7 +106,7 @@ begin "leak check (valgrind)"
 ./scripts/leaks.sh 20 || fail "scripts/leaks.sh"
 end "leak check (valgrind)"
 
-begin "fuzz (stable driver, 2 x 10 s)"
+begin "fuzz (stable driver, 3 x 10 s)"
 ./scripts/fuzz.sh 10 || fail "scripts/fuzz.sh (crash input in fuzz/artifacts/)"
 end "fuzz (stable driver)"
 

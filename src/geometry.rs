@@ -107,17 +107,19 @@ impl Geometry {
     /// The largest Hertz pressure (Pa) over the raceway slices whose loads `slice_loads` holds,
     /// per roller the cone's slices then the cup's (the layout of both models' slice loads).
     pub fn max_raceway_pressure(&self, slice_loads: &[f64]) -> f64 {
+        // the pressure goes with the root of q / R: the largest of those first, one root after
         let ns = self.slices;
-        let mut p_max: f64 = 0.0;
+        let mut worst = [0.0_f64; 2];
         for roller in slice_loads.chunks_exact(2 * ns) {
             let (cone, cup) = roller.split_at(ns);
-            for (line, loads) in [(&self.cone, cone), (&self.cup, cup)] {
-                for (k, q) in loads.iter().enumerate() {
-                    p_max = p_max.max(contact::line_contact_pressure(q / self.slice_len, self.e_prime, line.r_bar[k]));
+            for (w, (line, loads)) in worst.iter_mut().zip([(&self.cone, cone), (&self.cup, cup)]) {
+                for (q, r) in loads.iter().zip(&line.r_bar) {
+                    *w = w.max(q / r);
                 }
             }
         }
-        p_max
+        let p = |q_over_r: f64| contact::line_contact_pressure(q_over_r / self.slice_len, self.e_prime, 1.0);
+        p(worst[0]).max(p(worst[1]))
     }
 
     pub fn new(b: &Bearing, p: &Parameters) -> Geometry {

@@ -27,6 +27,11 @@ use crate::model::{Inputs, Lubrication, Outputs, Parameters, SolveReport};
 /// at more than a tenth of its limiting speed is caught.
 pub const LIMITING_NDM: f64 = 1.0e6;
 
+/// The same for a cylindrical roller bearing: 4.0e6 mm/min. Without ribs carrying an axial
+/// load, jet-oil lubricated cylindrical bearings of aero-engine main shafts run at n d_m up to
+/// about 3.5e6 (the CRB-TRILOBE preset: 3.4e6 at 40 000 rpm).
+pub const LIMITING_NDM_CYLINDRICAL: f64 = 4.0e6;
+
 /// The film ratio below which the [W25] regime law is in pure boundary lubrication.
 pub const BOUNDARY_FILM_RATIO: f64 = 0.01;
 
@@ -55,9 +60,16 @@ impl Warning {
     }
 }
 
-/// The limiting speed of `bearing` by [`LIMITING_NDM`] (rad/s).
+/// The limiting speed of `bearing` by [`LIMITING_NDM`] or [`LIMITING_NDM_CYLINDRICAL`] (rad/s).
 pub fn limiting_speed(bearing: &Bearing) -> f64 {
-    LIMITING_NDM / (bearing.pitch_diameter * 1e3) * std::f64::consts::PI / 30.0
+    limiting_ndm(bearing) / (bearing.pitch_diameter * 1e3) * std::f64::consts::PI / 30.0
+}
+
+fn limiting_ndm(bearing: &Bearing) -> f64 {
+    match bearing.kind {
+        crate::bearing::Kind::Tapered => LIMITING_NDM,
+        _ => LIMITING_NDM_CYLINDRICAL,
+    }
 }
 
 /// The causes that hold now, as a set of bits.
@@ -92,13 +104,17 @@ pub fn message(w: Warning, t: f64, bearing: &Bearing, out: &Outputs, inputs: &In
         Warning::SpeedLimit => {
             let fastest = inputs.speed.abs().max(inputs.cup_speed.abs());
             format!(
-                "t = {t}: a ring turns at {:.1} rad/s ({:.0} rpm), above the limiting speed {:.1} rad/s ({:.0} rpm, n dm = {:.1e} mm/min on a pitch diameter of {:.1} mm) of a tapered roller bearing of this size; speeds are in rad/s (rpm x pi/30): was rpm meant?",
+                "t = {t}: a ring turns at {:.1} rad/s ({:.0} rpm), above the limiting speed {:.1} rad/s ({:.0} rpm, n dm = {:.1e} mm/min on a pitch diameter of {:.1} mm) of a {} roller bearing of this size; speeds are in rad/s (rpm x pi/30): was rpm meant?",
                 fastest,
                 fastest * 30.0 / std::f64::consts::PI,
                 limiting_speed(bearing),
                 limiting_speed(bearing) * 30.0 / std::f64::consts::PI,
-                LIMITING_NDM,
-                bearing.pitch_diameter * 1e3
+                limiting_ndm(bearing),
+                bearing.pitch_diameter * 1e3,
+                match bearing.kind {
+                    crate::bearing::Kind::Tapered => "tapered",
+                    _ => "cylindrical",
+                }
             )
         }
         Warning::BoundaryFilm => format!(

