@@ -97,8 +97,13 @@ pub enum Kind {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactLaw {
-    /// Johnson line contact [W25].
+    /// Johnson's line contact (Contact Mechanics, 1985) in the slice form of [W25], with the
+    /// contact modulus E* of the book (`contact::LineLaw::johnson`).
     Johnson,
+    /// [W25] Eq. (1) as printed: the same form with Ē, 1/Ē = ½ Σ (1 − ν²)/E, i.e. 2 E*: twice
+    /// as stiff as Johnson's (`docs/model.md`, "Contact laws").
+    #[serde(rename = "johnson-w25")]
+    JohnsonW25,
     /// Palmgren slices [D19, Y22, L22].
     Palmgren,
 }

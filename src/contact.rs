@@ -37,7 +37,8 @@ pub(crate) const JOHNSON_LOG_FLOOR: f64 = 3.0;
 /// Load-deflection law of one slice, constants precomputed per slice.
 #[derive(Debug, Clone)]
 pub enum LineLaw {
-    /// q = c delta / (ln(8 R / delta) - 1), c = pi (l/s) E'; per slice `ln_8r` = ln(8 R_bar).
+    /// q = c delta / (ln(8 R / delta) - 1), c = pi (l/s) E* (Johnson) or pi (l/s) E' ([W25] as
+    /// printed); per slice `ln_8r` = ln(8 R_bar).
     Johnson { c: f64, ln_8r: Vec<f64> },
     /// q = k delta^(10/9), k = K / s: the whole-roller stiffness split over the slices,
     /// so the total load at uniform interference does not depend on s.
@@ -45,7 +46,23 @@ pub enum LineLaw {
 }
 
 impl LineLaw {
+    /// Johnson's line contact (Contact Mechanics, 1985, section 5.3): the approach of a
+    /// cylinder's axis towards the contact under a load q per length is
+    /// delta = q (1 − ν²)/(π E) (2 ln(4 R / a) − 1) for each body, so the pair's compliance is
+    /// Σ (1 − ν²)/E = 1/E* (E* the contact modulus, E' = 2 E*). With one cylinder of the
+    /// equivalent radius R̄ and the half-width a = sqrt(2 R̄ δ) where the undeformed profiles
+    /// meet, 2 ln(4 R̄ / a) − 1 = ln(8 R̄ / δ) − 1: the slice law of [W25] Eq. (1),
+    /// q = π (l/s) E* δ / (ln(8 R̄/δ) − 1). `e_prime` is E' = 2 E*.
     pub fn johnson(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
+        LineLaw::Johnson {
+            c: PI * slice_len * 0.5 * e_prime,
+            ln_8r: r_bar.iter().map(|r| libm::log(8.0 * r)).collect(),
+        }
+    }
+
+    /// The same law as [W25] Eq. (1) prints it, with Ē, 1/Ē = ½ Σ (1 − ν²)/E: Ē = E' = 2 E*,
+    /// twice Johnson's stiffness (kept to reproduce the study).
+    pub fn johnson_w25(e_prime: f64, slice_len: f64, r_bar: &[f64]) -> LineLaw {
         LineLaw::Johnson {
             c: PI * slice_len * e_prime,
             ln_8r: r_bar.iter().map(|r| libm::log(8.0 * r)).collect(),
@@ -288,18 +305,29 @@ mod tests {
     }
 
     #[test]
-    fn johnson_hand_value() {
-        // q = pi l E' delta / (ln(8R/delta) - 1)
-        let (e, l, r, d) = (2.0e11_f64, 0.01_f64, 0.005_f64, 5e-6_f64);
-        let law = LineLaw::johnson(e, l, &[r]);
-        let expect = PI * l * e * d / ((8.0 * r / d).ln() - 1.0);
+    fn johnson_law_follows_the_book() {
+        // Johnson, Contact Mechanics (1985), section 5.3: the axis of a cylinder of radius R
+        // pressed by q per length approaches the contact by q (1 - nu^2)/(pi E) (2 ln(4R/a) - 1),
+        // one such term per body. Steel on steel, one equivalent cylinder of R_bar = 5 mm, a
+        // 10 mm slice at 5 um, a the half-width where the undeformed profiles meet.
+        let (e, nu, l, r, d) = (208e9_f64, 0.3_f64, 0.01_f64, 0.005_f64, 5e-6_f64);
+        let compliance = 2.0 * (1.0 - nu * nu) / e; // both bodies: 1/E*
+        let a = (2.0 * r * d).sqrt();
+        let q_book = PI * l * d / (compliance * (2.0 * (4.0 * r / a).ln() - 1.0));
+        // by hand: E* = 114.29 GPa, a = 223.6 um, 2 ln(4R/a) - 1 = 7.987, q = 0.2248 MN/m x l
+        assert!((q_book / l - 2.2476e5).abs() < 1e-4 * 2.2476e5, "{}", q_book / l);
+        let e_prime = effective_modulus(e, nu, e, nu);
+        let law = LineLaw::johnson(e_prime, l, &[r]);
         let (q, dq, ext) = law.load(0, d);
-        assert!((q - expect).abs() < 1e-9 * expect);
+        assert!((q - q_book).abs() < 1e-12 * q_book, "{q} against {q_book}");
         assert!(!ext);
         let h = 1e-12;
         let fd = (law.load(0, d + h).0 - law.load(0, d - h).0) / (2.0 * h);
         assert!((dq - fd).abs() < 1e-5 * dq, "{dq} vs {fd}");
         assert!((law.deflection(0, q) - d).abs() < 1e-12 * d);
+        // [W25] Eq. (1) as printed: 1/E_bar = (1/2) sum (1 - nu^2)/E, twice as stiff
+        let w25 = LineLaw::johnson_w25(e_prime, l, &[r]);
+        assert!((w25.load(0, d).0 - 2.0 * q_book).abs() < 1e-12 * q_book);
     }
 
     #[test]

@@ -174,6 +174,7 @@ impl Geometry {
                 .collect();
             let law = match b.contact_law {
                 ContactLaw::Johnson => contact::LineLaw::johnson(e_prime, slice_len, &r_bar),
+                ContactLaw::JohnsonW25 => contact::LineLaw::johnson_w25(e_prime, slice_len, &r_bar),
                 ContactLaw::Palmgren => contact::LineLaw::palmgren(l, s),
             };
             ContactLine {

@@ -133,16 +133,16 @@ fn yes() -> bool {
 /// A co-simulation master waits for every doStep, so each one must end within a bound that
 /// does not depend on the inputs. The bound is counted in evaluations of the dynamic model's
 /// right-hand side (Jacobian columns included), not in seconds, so that whether a step
-/// succeeds is the same on every machine and a restored state repeats it bit for bit. 1e8 per
-/// simulated second is 100 000 evaluations for a 1 ms step: about 7 s of wall time for a
-/// 17-roller bearing with 20 slices (73 µs per evaluation, one core of the reference
-/// machine). The costliest legal transient measured needs 79 000: a load jump within the
-/// static rating on a light cone (a 30206 from Fx 3 kN, Fy 2 kN to 20 kN each, static safety
-/// 1.8), where the cone strikes the rollers and those on the unloaded side leave and strike
-/// their raceways and rib again (steps of nanoseconds for the first 60 µs,
-/// `docs/robustness.md`, "Bounded steps"); the run-up from rest about 10 000 in its first
-/// millisecond, steady running under combined load 120 per millisecond.
-pub const DEFAULT_WORK_BUDGET: f64 = 1e8;
+/// succeeds is the same on every machine and a restored state repeats it bit for bit. 2e8 per
+/// simulated second is 200 000 evaluations for a 1 ms step: about 14 s of wall time for a
+/// 17-roller bearing with 20 slices (70 µs per evaluation, one core of the reference
+/// machine), twice what the costliest legal transient measured needs, 97 000: a load jump
+/// within the static rating on a light cone (a 30206 from Fx 3 kN, Fy 2 kN to 20 kN each,
+/// static safety 1.8), where the cone strikes the rollers and those on the unloaded side
+/// leave and strike their raceways and rib again (steps of nanoseconds for the first 60 µs,
+/// `docs/robustness.md`, "Bounded steps"). The run-up from rest takes about 10 000 in its
+/// first millisecond, steady running under combined load 120 per millisecond.
+pub const DEFAULT_WORK_BUDGET: f64 = 2e8;
 
 /// The least budget of one doStep, whatever its length: a roller impact resolved in steps of
 /// nanoseconds (about 10 000 evaluations in 2 µs at tolerance 1e-5), so that short

@@ -187,9 +187,9 @@ fn load_jumps_on_a_user_bearing_return_within_their_bounds() {
     let before = fmu.get_state();
     let budget = trb::model::step_work_budget(trb::model::DEFAULT_WORK_BUDGET, 1e-3) as i32;
     // (jump to, refused before integration, wall-clock bound in s). The wall-clock bounds are
-    // those of the work budget (100 000 right-hand sides of about 70 us) with a margin for a
+    // those of the work budget (200 000 right-hand sides of about 70 us) with a margin for a
     // slower machine; the right-hand-side counts are the machine-independent measure.
-    let rows = [(20e3, false, 30.0), (100e3, false, 30.0), (1e6, true, 0.5), (10e6, true, 0.5)];
+    let rows = [(20e3, false, 60.0), (100e3, false, 60.0), (1e6, true, 0.5), (10e6, true, 0.5)];
     for (force, out_of_range, bound) in rows {
         fmu.set_state(before);
         let rhs0 = fmu.integer(var::INTEGRATOR_RHS);
@@ -274,7 +274,7 @@ fn both_fidelities_refuse_the_same_loads_with_the_same_message() {
     // the same words; the numbers differ by the rollers' places (the dynamic cage's angle)
     let words = |m: &str| m.chars().filter(|c| !c.is_ascii_digit()).collect::<String>();
     assert_eq!(words(&qs), words(&dynamic));
-    assert!(qs.contains("the load is beyond the model's range") && qs.contains("MPa"), "{qs}");
+    assert!(qs.contains("the load is beyond the model's range: "), "{qs}");
 }
 
 /// A master that restores the state before a refused step and retries, here with the load

@@ -564,3 +564,22 @@ fn study_validate_quick_writes_every_section() {
     }
     assert!(!text.contains("Not computed"), "a case failed:\n{text}");
 }
+
+#[test]
+fn bearing_show_prints_every_preset_as_a_file_fmu_accepts() {
+    let s = Scratch::new("bearing_show");
+    for (name, text) in trb::bearing::PRESETS {
+        let o = trb(&["bearing", "show", name]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        assert_eq!(stdout(&o), *text, "{name}: not the preset's text");
+        // a file written with --out is a bearing file the FMU packager takes
+        let file = s.path(&format!("{name}.json"));
+        let o = trb(&["bearing", "show", &name.to_lowercase(), "--out", p(&file)]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let parsed = trb::bearing::Bearing::from_json(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        assert_eq!(parsed.name, *name);
+    }
+    let o = trb(&["bearing", "show", "no-such-bearing"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("presets are"), "{}", stderr(&o));
+}

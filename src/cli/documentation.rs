@@ -308,7 +308,8 @@ fn write_bearing(h: &mut String, b: &Bearing, json: &str) {
         Kind::Cylindrical => "cylindrical roller bearing",
     };
     let law = match b.contact_law {
-        ContactLaw::Johnson => "Johnson line contact [W25]",
+        ContactLaw::Johnson => "Johnson line contact (Johnson 1985, in the slice form of [W25])",
+        ContactLaw::JohnsonW25 => "Johnson line contact as [W25] Eq. (1) prints it (twice as stiff as Johnson's)",
         ContactLaw::Palmgren => "Palmgren slices [D19, Y22, L22]",
     };
     let lub = match b.lubrication {

@@ -13,6 +13,7 @@
 use clap::{Parser, Subcommand};
 use std::fmt;
 
+pub mod bearing;
 pub mod bench;
 pub mod demo;
 pub mod documentation;
@@ -50,6 +51,8 @@ pub enum Command {
     Stress(stress::StressArgs),
     /// Benchmark: work-precision of the dynamic model, kernels and targets; update docs/performance.md.
     Bench(bench::BenchArgs),
+    /// Bearing files: `show NAME` prints a preset as a bearing file to start from.
+    Bearing(bearing::BearingArgs),
 }
 
 /// Run the parsed command line.
@@ -61,6 +64,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Study(args) => study::run(args),
         Command::Stress(args) => stress::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Bearing(args) => bearing::run(args),
     }
 }
 
