@@ -511,7 +511,7 @@ fn w25_section(runs: &W25Runs, plan: &Plan, ledger: &mut Ledger) -> String {
          The product's dynamic model (`fidelity` = 1, docs/dynamic.md) on the scenarios of `scenarios/w25_dynamic/` \
          (TRB130x230 as published, 20 slices, the default automatic integrator at tolerance 1e-6), each run {} ms, once \
          per traction law, from the steady running state where there is one (`startSteady`: no radial load, no \
-         deflection) and from the quasi-static seat otherwise; statistics over the second half of each run \
+         deflection) and run in at the initial inputs otherwise (docs/dynamic.md); statistics over the second half of each run \
          (`src/cli/study/w25.rs`). θavg, ϕavg: mean of |tilt|, |skew| over the rollers and the samples; θmax, ϕmax: \
          the largest |tilt|, |skew| of any roller at any sample. Angles in degrees.\n\n\
          **Signs.** The product's skew ϕ is the rotation of the roller axis about its in-plane normal, positive when \

@@ -569,7 +569,7 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
          `scenarios/w25_dynamic/` (run any of them with `trb simulate`). Every number comes from the dynamic model \
          the FMU runs at `fidelity` = 1 (docs/dynamic.md) for the TRB130x230 preset as published, 20 slices, \
          tolerance {:e} (the preset's), 50 ms per case, from the steady running state where there is one (`startSteady`: no radial \
-         load, no deflection) and from the quasi-static seat otherwise. Source: [W25] Wu, Kang, Deng, Lubricants \
+         load, no deflection) and run in at the initial inputs otherwise (docs/dynamic.md). Source: [W25] Wu, Kang, Deng, Lubricants \
          13(10):438, 2025. Angles in degrees (tilt in millidegrees).\n\n{md}",
         trb::bearing::Bearing::default_preset().tolerance
     );
