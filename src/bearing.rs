@@ -18,6 +18,7 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("32018X", include_str!("../presets/32018X.json")),
     ("32008", include_str!("../presets/32008.json")),
     ("CRB-TRILOBE", include_str!("../presets/CRB-TRILOBE.json")),
+    ("TRB130x230-W25", include_str!("../presets/TRB130x230-W25.json")),
 ];
 
 /// Name of the default preset.
@@ -936,7 +937,7 @@ mod tests {
 
     #[test]
     fn trb130_values_are_the_published_ones_in_si() {
-        let b = Bearing::default_preset();
+        let b = Bearing::preset("TRB130x230-W25").unwrap();
         assert_eq!(b.roller_count, 17);
         assert!((b.roller_length - 42.06e-3).abs() < 1e-12);
         assert!((b.roller_mean_diameter - 21.37e-3).abs() < 1e-12);

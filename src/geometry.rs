@@ -103,7 +103,50 @@ pub struct Geometry {
     pub axial: bool,
 }
 
+/// Where the lines of a tapered bearing meet the bearing axis, measured along it from the
+/// roller centre's plane (m): a kinematically consistent bearing has one apex for all, so
+/// that every point of a roller rolls on both raceways without sliding.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Apexes {
+    /// The cone raceway's, the cup raceway's and the roller axis's meeting points.
+    pub cone: f64,
+    pub cup: f64,
+    pub roller_axis: f64,
+    /// How far the roller's own apex (where its generatrices meet on its axis) lies from the
+    /// roller axis's meeting point.
+    pub roller: f64,
+}
+
+impl Apexes {
+    /// The largest distance between any two of the four (m).
+    pub fn mismatch(&self) -> f64 {
+        let xs = [self.cone, self.cup, self.roller_axis];
+        let spread = xs.iter().fold(f64::NEG_INFINITY, |m, x| m.max(*x)) - xs.iter().fold(f64::INFINITY, |m, x| m.min(*x));
+        spread.max(self.roller)
+    }
+}
+
 impl Geometry {
+    /// The apexes of a tapered bearing (`Apexes`); `None` for a cylindrical one.
+    pub fn apexes(&self) -> Option<Apexes> {
+        let (ai, ao, ar) = (self.cone_angle, self.cup_angle, self.axis_angle);
+        if !(ai > 0.0 && ao > 0.0 && ar > 0.0 && self.half_angle > 0.0) {
+            return None;
+        }
+        let meets = |p: Vec2, angle: f64| p[0] + p[1] / libm::tan(angle);
+        let c = self.center;
+        let roller_axis = meets(c, ar);
+        // the roller's own apex, mean radius / tan(half-cone angle) along its axis
+        let d = self.mean_radius / libm::tan(self.half_angle);
+        let own = [c[0] + d * self.axis[0], c[1] + d * self.axis[1]];
+        Some(Apexes {
+            cone: meets(self.cone.point[0], ai),
+            cup: meets(self.cup.point[0], ao),
+            roller_axis,
+            roller: libm::hypot(own[0] - roller_axis, own[1]),
+        })
+    }
+
     /// The largest Hertz pressure (Pa) over the raceway slices whose loads `slice_loads` holds,
     /// per roller the cone's slices then the cup's (the layout of both models' slice loads).
     pub fn max_raceway_pressure(&self, slice_loads: &[f64]) -> f64 {
@@ -332,7 +375,7 @@ mod tests {
 
     #[test]
     fn contact_normals_are_perpendicular_to_generatrices() {
-        let g = geometry("TRB130x230");
+        let g = geometry("TRB130x230-W25");
         let k = g.slices - 1;
         for line in [&g.cone, &g.cup] {
             let d = [line.point[k][0] - line.point[0][0], line.point[k][1] - line.point[0][1]];
@@ -345,7 +388,7 @@ mod tests {
 
     #[test]
     fn flange_contact_sits_on_the_end_face_towards_the_cone() {
-        let g = geometry("TRB130x230");
+        let g = geometry("TRB130x230-W25");
         let f = g.flange.as_ref().unwrap();
         // [W25]: 83 deg flange angle, 5 deg cone, 5 deg half angle -> 3 deg off the axis.
         let expect = 0.15395 * 3.0_f64.to_radians().sin();

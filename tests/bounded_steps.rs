@@ -455,10 +455,11 @@ fn the_first_sample_obeys_the_relations_of_later_samples() {
             mismatch(&first),
             imbalance(&first)
         );
-        // the run-in stops within 1 %; the roller passes move it by as much in running
+        // the run-in stops within 1 %; the roller passes move it by as much in running, and the
+        // run on to the next whole pitch lands anywhere in that swing
         assert!(
-            mismatch(&first) < 0.015 && mismatch(&first) < 2.0 * worst_mismatch,
-            "{what}: {}",
+            mismatch(&first) < 0.015 || mismatch(&first) < 1.25 * worst_mismatch,
+            "{what}: {} against {worst_mismatch} later",
             mismatch(&first)
         );
         assert!(imbalance(&first) < 1e-6, "{what}: {}", imbalance(&first));

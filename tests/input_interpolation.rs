@@ -104,7 +104,7 @@ fn ramped_inputs_spare_rosenbrock_w_the_ring_of_held_jumps() {
 /// values at the step's end, and the rates apply to that step only.
 #[test]
 fn a_quasi_static_cage_turns_by_the_mean_speed_of_a_ramp() {
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_real(var::SPEED, 100.0).unwrap();
     s.initialize(0.0).unwrap();
     let azimuth = |s: &mut Simulation| s.get_real(var::ROLLER_AZIMUTH).unwrap();
@@ -152,7 +152,7 @@ fn input_rates_are_part_of_the_state() {
 /// before the step, naming the input, and the element is unchanged.
 #[test]
 fn bad_input_rates_are_refused_with_a_reason() {
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.initialize(0.0).unwrap();
     for (vr, rate) in [
         (var::TOLERANCE, 1.0),
@@ -172,7 +172,7 @@ fn bad_input_rates_are_refused_with_a_reason() {
     assert!(e.to_string().contains("oilTemperature"), "{e}");
     s.set_real_derivative(var::OIL_TEMPERATURE, 0.0).unwrap();
     s.do_step(0.0, 1e-3).unwrap();
-    let mut fresh = Simulation::new(Bearing::default_preset());
+    let mut fresh = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     fresh.deserialize_state(&before).unwrap();
     fresh.do_step(0.0, 1e-3).unwrap();
     assert_eq!(

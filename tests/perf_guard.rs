@@ -26,7 +26,7 @@ fn dynamic_counts(integrator: i32, setting: f64, fy: f64, steps: usize, h: f64) 
 /// [`dynamic_counts`] from the quasi-static seat (`startSteady` off): the start-up transient
 /// of a bearing under radial load, a transient every integrator must follow.
 fn dynamic_counts_from_the_seat(integrator: i32, setting: f64, fy: f64, steps: usize, h: f64) -> (i32, i32, i32) {
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_integer(var::FIDELITY, 1).unwrap();
     s.set_integer(var::INTEGRATOR, integrator).unwrap();
     s.set_real(var::TOLERANCE, setting).unwrap();
@@ -98,7 +98,7 @@ fn default_settings_work_on_the_settled_w25_case() {
     // the [W25] case as shipped (automatic integrator, the presets' tolerance), settled: about
     // one Rosenbrock-W step per 1 ms communication step (526 in 0.5 s) is what makes it run in
     // real time
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_integer(var::FIDELITY, 1).unwrap();
     s.initialize(0.0).unwrap();
     for k in 0..40 {
@@ -137,7 +137,7 @@ fn rosenbrock_work_in_a_run_up_from_rest_with_the_speed_ramped() {
     // the first 0.2 ms of the [W25] run-up (0 -> 3500 rpm in 20 ms, Fa 30 kN) in one step,
     // the speed ramped by the master's input derivative: the stages take df/dt (before:
     // 7032 RHS, steps near 50 ns against the regularised friction of near-standstill)
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_integer(var::FIDELITY, 1).unwrap();
     s.set_integer(var::INTEGRATOR, 2).unwrap();
     s.set_real(var::TOLERANCE, 1e-5).unwrap();
@@ -167,7 +167,7 @@ fn gill_milne_hamming_work_is_fixed_by_the_step() {
 
 #[test]
 fn quasi_static_newton_iterations_under_combined_load() {
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_real(var::FY, 10_000.0).unwrap();
     s.set_real(var::XI, 0.004_f64.to_radians()).unwrap();
     s.initialize(0.0).unwrap();

@@ -52,11 +52,11 @@ fn running(o: &Outputs) -> [(&'static str, f64); 6] {
 fn the_steady_start_is_where_the_start_up_transient_ends() {
     // [W25] case from the quasi-static seat, 0.3 s of 1 ms steps: the skew rings at ~500 Hz
     // and has settled to 1e-7 by 0.2 s (docs/performance.md)
-    let mut seat = element("TRB130x230", false, 2, 1e-5, &[]);
+    let mut seat = element("TRB130x230-W25", false, 2, 1e-5, &[]);
     let at_seat = seat.last_outputs().clone();
     run(&mut seat, 300, 1e-3);
     let settled = seat.last_outputs().clone();
-    let steady = element("TRB130x230", true, 2, 1e-5, &[]);
+    let steady = element("TRB130x230-W25", true, 2, 1e-5, &[]);
     let start = steady.last_outputs().clone();
     assert!(!steady.last_report().steady_start_failed);
     // the transient was real: the seat has no skew and about a third of the torque
@@ -72,7 +72,7 @@ fn the_steady_start_is_where_the_start_up_transient_ends() {
 fn a_steady_start_stays_steady() {
     // Dormand-Prince at a tight tolerance resolves every contact mode: whatever the start
     // leaves unbalanced shows as motion
-    let mut s = element("TRB130x230", true, 0, 1e-7, &[]);
+    let mut s = element("TRB130x230-W25", true, 0, 1e-7, &[]);
     let start = s.last_outputs().clone();
     for k in 0..10 {
         s.do_step(k as f64 * 1e-3, 1e-3).unwrap();
@@ -93,7 +93,7 @@ fn a_steady_start_runs_at_the_communication_step() {
     // with nothing to resolve, Rosenbrock-W's steps grow to the 1 ms interval at once (from
     // the seat: 202 steps in the same 20 ms at tolerance 1e-4)
     for tol in [1e-4, 1e-5] {
-        let mut s = element("TRB130x230", true, 2, tol, &[]);
+        let mut s = element("TRB130x230-W25", true, 2, tol, &[]);
         run(&mut s, 20, 1e-3);
         let steps = s.last_outputs().integrator_steps;
         eprintln!("tolerance {tol:e}: {steps} steps in 20 ms");
@@ -107,8 +107,8 @@ fn other_cases_start_run_in_where_the_seat_start_leads() {
     // the element runs in at the initial inputs (`dynamic/run_in.rs`) and turns the rollers
     // back to where they started
     for set in [vec![(var::FY, 25_000.0)], vec![(var::XI, 0.004_f64.to_radians())]] {
-        let mut on = element("TRB130x230", true, 2, 1e-5, &set);
-        let mut off = element("TRB130x230", false, 2, 1e-5, &set);
+        let mut on = element("TRB130x230-W25", true, 2, 1e-5, &set);
+        let mut off = element("TRB130x230-W25", false, 2, 1e-5, &set);
         let speed = on.inputs().speed;
         let (start, seat) = (on.last_outputs().clone(), off.last_outputs().clone());
         // the seat breaks the power balance (a third of the torque), the run-in start keeps it
@@ -146,7 +146,7 @@ fn every_tapered_preset_starts_steady_under_an_axial_load() {
     // lubricated (TRB130x230 at 50 rad/s, 32008) and dry Coulomb friction ([D19] 32018X):
     // the start holds over 5 ms of Rosenbrock-W at tolerance 1e-6
     for (preset, speed, fx) in [
-        ("TRB130x230", 50.0, 30_000.0),
+        ("TRB130x230-W25", 50.0, 30_000.0),
         ("32008", 314.0, 3_000.0),
         ("32018X", 157.0, 15_000.0),
     ] {
@@ -176,7 +176,7 @@ fn the_39_kn_case_starts_steady_at_every_tolerance() {
     let set = [(var::SPEED, 366.5191429188092), (var::FX, 39_000.0)];
     let mut skews = Vec::new();
     for tolerance in [1e-5, 1e-6, 1e-7] {
-        let s = element("TRB130x230", true, 3, tolerance, &set);
+        let s = element("TRB130x230-W25", true, 3, tolerance, &set);
         assert!(!s.last_report().steady_start_failed, "tolerance {tolerance}");
         skews.push(s.last_outputs().skew[0]);
     }

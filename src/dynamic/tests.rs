@@ -110,8 +110,8 @@ fn starts_seated_from_the_quasi_static_solution() {
     // and keep them: no start-up transient.
     // The seat itself, not the running state `startSteady` runs in to.
     let setup = [(var::FY, 8_000.0), (var::XI, 0.004_f64.to_radians())];
-    let qs = quasi_static_outputs("TRB130x230", 10, &setup);
-    let mut s = sim("TRB130x230", 10, &setup);
+    let qs = quasi_static_outputs("TRB130x230-W25", 10, &setup);
+    let mut s = sim("TRB130x230-W25", 10, &setup);
     s.set_boolean(var::START_STEADY, false).unwrap();
     s.initialize(0.0).unwrap();
     let d = s.last_outputs().clone();
@@ -136,7 +136,7 @@ fn starts_seated_from_the_quasi_static_solution() {
         );
     }
     // epicyclic speed of pure rolling: the quasi-static model's cage slip rate is not applied
-    let slip = Bearing::default_preset().cage_slip_rate;
+    let slip = Bearing::preset("TRB130x230-W25").unwrap().cage_slip_rate;
     assert!((d.cage_speed - qs.cage_speed / (1.0 - slip)).abs() < 1e-12 * qs.cage_speed);
     for k in 0..5 {
         s.do_step(k as f64 * 1e-4, 1e-4).unwrap();
@@ -158,7 +158,7 @@ fn every_tapered_preset_starts_in_axial_balance_with_the_quasi_static_flange_loa
     // 9 um short, a 10 kN flange load at t = 0 against 288 N quasi-static, followed by
     // 30 ns chatter (F12, docs/robustness.md). The seat itself, not the steady running
     // state (`startSteady`, which adds the traction's share: 32008's flange load +12 %).
-    for name in ["TRB130x230", "32018X", "32008"] {
+    for name in ["TRB130x230-W25", "32018X", "32008"] {
         let qs = quasi_static_outputs(name, 10, &[]);
         let mut s = sim(name, 10, &[]);
         s.set_boolean(var::START_STEADY, false).unwrap();
@@ -205,7 +205,11 @@ fn standstill_under_load_is_at_rest_and_cheap_for_the_implicit_integrator() {
     // F11: at standstill the boundary law's slope 40.4 / u_e had no bound as the entrainment
     // speed u_e -> 0 (steps of ~1.5 ns, friction torque chattering at +-300 N m). With u_e
     // floored at 0.04 m/s a loaded bearing at rest stays at rest.
-    let mut s = sim("TRB130x230", 10, &[(var::SPEED, 0.0), (var::FY, 50_000.0), (var::TOLERANCE, 1e-4)]);
+    let mut s = sim(
+        "TRB130x230-W25",
+        10,
+        &[(var::SPEED, 0.0), (var::FY, 50_000.0), (var::TOLERANCE, 1e-4)],
+    );
     s.set_integer(var::INTEGRATOR, 2).unwrap();
     let mut worst: f64 = 0.0;
     run(&mut s, 1e-3, 3, |_, o| {
@@ -219,7 +223,7 @@ fn standstill_under_load_is_at_rest_and_cheap_for_the_implicit_integrator() {
 
 #[test]
 fn torque_times_speed_equals_power_loss_on_time_average() {
-    let mut s = sim("TRB130x230", 10, &[]);
+    let mut s = sim("TRB130x230-W25", 10, &[]);
     // the parts always add up to the torque
     s.initialize(0.0).unwrap();
     let o = s.last_outputs();
@@ -239,7 +243,7 @@ fn torque_times_speed_equals_power_loss_on_time_average() {
 
 #[test]
 fn aligned_pure_axial_load_gives_every_roller_the_same_statistics() {
-    let mut s = sim("TRB130x230", 10, &[]);
+    let mut s = sim("TRB130x230-W25", 10, &[]);
     let a = averages(&mut s, 1e-4, 120);
     let mean_skew = a.per_roller_skew.iter().sum::<f64>() / a.per_roller_skew.len() as f64;
     for j in 0..a.per_roller_skew.len() {
@@ -261,8 +265,8 @@ fn low_speed_contact_loads_agree_with_the_quasi_static_model() {
     // thermal Eyring film carries 0.01-0.02 of the load in traction at 100 rpm, which tilts the
     // rollers and moves the cone by 1.6 % (the quasi-static load balance has no traction).
     let setup = [(var::SPEED, 100.0 * RPM), (var::FY, 10_000.0)];
-    let qs = quasi_static_outputs("TRB130x230", 10, &setup);
-    let mut s = sim("TRB130x230", 10, &setup);
+    let qs = quasi_static_outputs("TRB130x230-W25", 10, &setup);
+    let mut s = sim("TRB130x230-W25", 10, &setup);
     s.set_integer(var::TRACTION, 1).unwrap();
     let a = averages(&mut s, 2e-4, 100);
     assert!(
@@ -284,12 +288,12 @@ fn refining_tolerance_and_slices_changes_the_results_little() {
     // at 500 rpm, where the published geometry's skew is largest (0.08 deg; near 3500 rpm it
     // crosses zero and a relative change means nothing)
     let speed = (var::SPEED, 500.0 * RPM);
-    let base = averages(&mut sim("TRB130x230", 10, &[speed]), 1e-4, 100);
+    let base = averages(&mut sim("TRB130x230-W25", 10, &[speed]), 1e-4, 100);
     let tight = {
-        let mut s = sim("TRB130x230", 10, &[speed, (var::TOLERANCE, 0.5e-6)]);
+        let mut s = sim("TRB130x230-W25", 10, &[speed, (var::TOLERANCE, 0.5e-6)]);
         averages(&mut s, 1e-4, 100)
     };
-    let fine = averages(&mut sim("TRB130x230", 20, &[speed]), 1e-4, 100);
+    let fine = averages(&mut sim("TRB130x230-W25", 20, &[speed]), 1e-4, 100);
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
     // halving the tolerance: torque and skew within 1 %
     assert!(
@@ -332,17 +336,17 @@ fn tilt_is_far_below_skew_and_the_centrifugal_effect_acts_on_skew_the_gyroscopic
     // passes through zero near 3500 rpm (docs/validation.md), where the first statement
     // holds only by a factor of about 10.
     let speed = (var::SPEED, 1500.0 * RPM);
-    let all = averages(&mut sim("TRB130x230", 10, &[speed]), 1e-4, 100);
+    let all = averages(&mut sim("TRB130x230-W25", 10, &[speed]), 1e-4, 100);
     assert!(
         all.tilt_max < 0.01 * all.skew_mean.abs(),
         "tilt {} vs skew {}",
         all.tilt_max,
         all.skew_mean
     );
-    let mut s = sim("TRB130x230", 10, &[speed]);
+    let mut s = sim("TRB130x230-W25", 10, &[speed]);
     s.set_boolean(var::CENTRIFUGAL, false).unwrap();
     let no_cf = averages(&mut s, 1e-4, 100);
-    let mut s = sim("TRB130x230", 10, &[speed]);
+    let mut s = sim("TRB130x230-W25", 10, &[speed]);
     s.set_boolean(var::GYROSCOPIC, false).unwrap();
     let no_gyro = averages(&mut s, 1e-4, 100);
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
@@ -375,8 +379,8 @@ fn skew_grows_with_speed_in_a_kinematically_consistent_bearing() {
 fn shaft_deflection_raises_the_tilt_and_skew_amplitudes() {
     // [W25] Fig. 6: a deflected shaft raises the largest tilt (measured 0.44 -> 3.5 mdeg at
     // 0.006 deg) and the largest skew (0.009 -> 0.023 deg, 20-slice runs of 30 ms).
-    let aligned = averages(&mut sim("TRB130x230", 10, &[]), 1e-4, 60);
-    let deflected = averages(&mut sim("TRB130x230", 10, &[(var::XI, 0.006_f64.to_radians())]), 1e-4, 60);
+    let aligned = averages(&mut sim("TRB130x230-W25", 10, &[]), 1e-4, 60);
+    let deflected = averages(&mut sim("TRB130x230-W25", 10, &[(var::XI, 0.006_f64.to_radians())]), 1e-4, 60);
     assert!(
         deflected.tilt_max > 1.5 * aligned.tilt_max,
         "{} vs {}",
@@ -393,13 +397,13 @@ fn shaft_deflection_raises_the_tilt_and_skew_amplitudes() {
 
 #[test]
 fn serialized_state_resumes_bit_for_bit() {
-    let mut a = sim("TRB130x230", 10, &[(var::FY, 5_000.0)]);
+    let mut a = sim("TRB130x230-W25", 10, &[(var::FY, 5_000.0)]);
     a.initialize(0.0).unwrap();
     for k in 0..5 {
         a.do_step(k as f64 * 1e-4, 1e-4).unwrap();
     }
     let bytes = a.serialize_state();
-    let mut b = sim("TRB130x230", 10, &[(var::FY, 5_000.0)]);
+    let mut b = sim("TRB130x230-W25", 10, &[(var::FY, 5_000.0)]);
     b.deserialize_state(&bytes).unwrap();
     for k in 5..10 {
         a.do_step(k as f64 * 1e-4, 1e-4).unwrap();
@@ -416,7 +420,7 @@ fn serialized_state_resumes_bit_for_bit() {
 #[test]
 #[ignore]
 fn explore() {
-    let mut s = sim("TRB130x230", 20, &[]);
+    let mut s = sim("TRB130x230-W25", 20, &[]);
     if let Ok(v) = std::env::var("SLICES") {
         s.set_integer(var::SLICES, v.parse().unwrap()).unwrap();
     }
@@ -450,7 +454,7 @@ fn explore() {
 #[ignore]
 fn explore_speed_sweep() {
     for rpm in [500.0, 1500.0, 2500.0, 3500.0, 4500.0] {
-        let mut s = sim("TRB130x230", 10, &[(var::SPEED, rpm * RPM)]);
+        let mut s = sim("TRB130x230-W25", 10, &[(var::SPEED, rpm * RPM)]);
         let z = s.n_rollers();
         let (mut nis, mut nos, mut nfs, mut n, mut qc) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let a = {
@@ -494,7 +498,7 @@ fn explore_speed_sweep() {
 fn explore_switches() {
     for (label, cf, gy) in [("all", true, true), ("no centrifugal", false, true), ("no gyroscopic", true, false)] {
         for rpm in [1500.0, 3500.0] {
-            let mut s = sim("TRB130x230", 10, &[(var::SPEED, rpm * RPM)]);
+            let mut s = sim("TRB130x230-W25", 10, &[(var::SPEED, rpm * RPM)]);
             s.set_boolean(var::CENTRIFUGAL, cf).unwrap();
             s.set_boolean(var::GYROSCOPIC, gy).unwrap();
             let a = averages(&mut s, 1e-4, 100);
@@ -525,7 +529,7 @@ fn seated(
 #[ignore]
 fn rhs_cost() {
     let n: usize = std::env::var("RHS_N").ok().and_then(|s| s.parse().ok()).unwrap_or(100);
-    let (mut d, st, i) = seated("TRB130x230", |_, _| {});
+    let (mut d, st, i) = seated("TRB130x230-W25", |_, _| {});
     // RHS_SCALAR=1: the raceway traction slice by slice (the reference of the two-lane path)
     if std::env::var("RHS_SCALAR").is_ok() {
         d.c.paired_traction = false;
@@ -557,21 +561,21 @@ fn rhs_snapshot() {
     std::fs::create_dir_all(dir).unwrap();
     type Setup = fn(&mut Parameters, &mut Inputs);
     let cases: Vec<(&str, &str, Setup)> = vec![
-        ("w25", "TRB130x230", |_, _| {}),
-        ("combined", "TRB130x230", |_, i| {
+        ("w25", "TRB130x230-W25", |_, _| {}),
+        ("combined", "TRB130x230-W25", |_, i| {
             i.fy = 10e3;
             i.xi = 0.004_f64.to_radians();
         }),
-        ("light_rest", "TRB130x230", |p, i| {
+        ("light_rest", "TRB130x230-W25", |p, i| {
             p.start_from_rest = true;
             i.fx = 2e3;
             i.fy = 1e3;
         }),
-        ("dry", "TRB130x230", |p, i| {
+        ("dry", "TRB130x230-W25", |p, i| {
             p.lubrication = crate::model::Lubrication::Dry;
             i.fy = 5e3;
         }),
-        ("kinematic_cage", "TRB130x230", |p, i| {
+        ("kinematic_cage", "TRB130x230-W25", |p, i| {
             p.cage_dynamic = false;
             i.fy = 5e3;
             i.zeta = 0.002_f64.to_radians();
@@ -700,7 +704,7 @@ fn explore_integrators() {
         let (ig, v) = item.split_once(':').unwrap();
         let ig: i32 = ig.parse().unwrap();
         let v: f64 = v.parse().unwrap();
-        let mut s = sim("TRB130x230", slices, &[(var::FY, fy), (var::XI, xi.to_radians())]);
+        let mut s = sim("TRB130x230-W25", slices, &[(var::FY, fy), (var::XI, xi.to_radians())]);
         s.set_integer(var::INTEGRATOR, ig).unwrap();
         if ig == 1 {
             s.set_real(var::MAX_STEP, v).unwrap();
@@ -736,7 +740,7 @@ fn explore_integrators() {
 #[test]
 fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     use super::jacobian::{BlockJacobian, BlockSystem, M, NG};
-    let (mut d, mut st, i) = seated("TRB130x230", |p, i| {
+    let (mut d, mut st, i) = seated("TRB130x230-W25", |p, i| {
         p.slices = 10;
         i.fy = 8e3;
         i.xi = 0.003_f64.to_radians();
@@ -901,7 +905,7 @@ fn high_speed_cage_whirls_inside_its_land_and_energy_is_conserved() {
 #[ignore]
 fn explore_sweep() {
     let env = |k: &str, d: &str| std::env::var(k).unwrap_or(d.to_string());
-    let bearing = env("BEARING", "TRB130x230");
+    let bearing = env("BEARING", "TRB130x230-W25");
     let b = if bearing.ends_with(".json") {
         Bearing::from_json(&std::fs::read_to_string(&bearing).unwrap()).unwrap()
     } else {
@@ -1019,7 +1023,7 @@ fn paired_traction_agrees_with_the_scalar_law() {
         }),
     ];
     for (name, t_end, setup) in cases {
-        let (mut d, mut st, i) = seated("TRB130x230", setup);
+        let (mut d, mut st, i) = seated("TRB130x230-W25", setup);
         if t_end > 0.0 {
             d.advance(&mut st, &i, t_end).unwrap();
         }
@@ -1091,24 +1095,24 @@ fn four_lanes_give_the_two_lane_bits() {
     }
     type Setup = fn(&mut Parameters, &mut Inputs);
     let cases: Vec<(&str, Setup)> = vec![
-        ("TRB130x230", |_, _| {}),
-        ("TRB130x230", |p, i| {
+        ("TRB130x230-W25", |_, _| {}),
+        ("TRB130x230-W25", |p, i| {
             p.slices = 7;
             i.fy = 10e3;
             i.xi = 0.004_f64.to_radians();
         }),
-        ("TRB130x230", |p, i| {
+        ("TRB130x230-W25", |p, i| {
             p.slices = 9;
             p.start_from_rest = true;
             i.fx = 2e3;
             i.fy = 1e3;
         }),
-        ("TRB130x230", |p, i| {
+        ("TRB130x230-W25", |p, i| {
             p.slices = 10;
             p.lubrication = crate::model::Lubrication::Dry;
             i.fy = 5e3;
         }),
-        ("TRB130x230", |p, i| {
+        ("TRB130x230-W25", |p, i| {
             p.slices = 6;
             p.roughness = 0.6e-6;
             i.speed = 20.0;

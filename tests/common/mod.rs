@@ -4,12 +4,12 @@ use trb::bearing::Bearing;
 use trb::simulation::Simulation;
 use trb::variables as var;
 
-/// The default bearing ([W25] case: 3500 rpm, Fa 30 kN) at fidelity 1 with radial load `fy`,
+/// The [W25] bearing as published (TRB130x230-W25: 3500 rpm, Fa 30 kN) at fidelity 1 with radial load `fy`,
 /// integrated by `integrator` with `setting` as its tolerance (0, 2) or fixed step `maxStep`
 /// (1), initialized at t = 0.
 #[allow(dead_code)] // not every test file that includes `common` uses it
 pub fn dynamic_element(integrator: i32, setting: f64, fy: f64) -> Simulation {
-    let mut s = Simulation::new(Bearing::default_preset());
+    let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_integer(var::FIDELITY, 1).unwrap();
     s.set_integer(var::INTEGRATOR, integrator).unwrap();
     if integrator == 1 {

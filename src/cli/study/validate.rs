@@ -430,7 +430,7 @@ const W25_QUICK: [&str; 3] = ["deflection_xi0.000", "deflection_xi0.004", "speed
 /// Roller skew measured in TRBs, as [W25] §4.1 cites it (deg): [8], [25, 26], [27].
 const MEASURED_SKEW_DEG: (f64, f64) = (0.07, 0.6);
 
-/// Dynamic runs of the apex-consistent TRB130x230 (`scenarios/validate/`), full mode only.
+/// Dynamic runs of the default TRB130x230, apex-consistent (`scenarios/validate/`), full mode only.
 const APEX_DYNAMIC: [&str; 2] = ["apex_dynamic_500rpm", "apex_dynamic_3500rpm"];
 
 /// Dynamic runs: per scenario, one result per traction law (`None`: not run or failed).
@@ -507,9 +507,9 @@ fn skew_max_deg(r: &CaseResult) -> f64 {
 
 fn w25_section(runs: &W25Runs, plan: &Plan, ledger: &mut Ledger) -> String {
     let mut md = format!(
-        "## 1. [W25] Roller tilt and skew under shaft deflection (TRB130x230, dynamic model)\n\n\
+        "## 1. [W25] Roller tilt and skew under shaft deflection (TRB130x230-W25, dynamic model)\n\n\
          The product's dynamic model (`fidelity` = 1, docs/dynamic.md) on the scenarios of `scenarios/w25_dynamic/` \
-         (TRB130x230 as published, 20 slices, the default automatic integrator at tolerance 1e-6), each run {} ms, once \
+         (TRB130x230-W25, [W25] Table 1 and Eq. (1) as printed, 20 slices, the default automatic integrator at tolerance 1e-6), each run {} ms, once \
          per traction law, from the steady running state where there is one (`startSteady`: no radial load, no \
          deflection) and run in at the initial inputs otherwise (docs/dynamic.md); statistics over the second half of each run \
          (`src/cli/study/w25.rs`). θavg, ϕavg: mean of |tilt|, |skew| over the rollers and the samples; θmax, ϕmax: \
@@ -2116,7 +2116,7 @@ fn skf_table(ledger: &mut Ledger, title: &str, x_label: &str, points: &[SkfPoint
 }
 
 fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger) -> Result<String, CliError> {
-    eprintln!("SKF: quasi-static sweeps of TRB130x230 (published and apex-consistent) and 32008");
+    eprintln!("SKF: quasi-static sweeps of TRB130x230-W25 (as published), TRB130x230 (apex-consistent) and 32008");
     let trb = skf_friction::trb130x230_series();
     let small = skf_friction::series_32008();
     let speeds = plan.pick(&W25_SPEEDS_RPM, &[500.0, 3500.0]);
@@ -2135,11 +2135,11 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
          fidelity 1 (the [W25] runs of section 1, averaged over the second half) for TRB130x230. Torques in N m; \
          raceway / flange: `frictionTorque.raceway` / `.flange`.\n\n\
          The SKF model assumes a kinematically consistent TRB (cone, cup and roller axis meeting in one apex on the \
-         bearing axis). The published TRB130x230 geometry is not: its cone, cup and roller axis meet the bearing axis \
-         894, 373 and 512 mm from the pitch plane, so its rollers slide along the whole contact line. \
-         `tests/fixtures/TRB130x230-apex.json` is the same bearing made apex-consistent (cup angle as published, \
-         roller half-cone and cone angle changed); the SKF numbers are the same for both (same envelope, cup angle and \
-         oil).\n\n",
+         bearing axis). The published TRB130x230 geometry (preset TRB130x230-W25) is not: its cone, cup and roller axis \
+         meet the bearing axis 894, 373 and 512 mm from the pitch plane, so its rollers slide along the whole contact \
+         line. The default preset TRB130x230 is the same bearing made apex-consistent (cup angle as published, roller \
+         half-cone and cone angle derived, Palmgren's law, presets/TRB130x230.json); the SKF numbers are the same for \
+         both (same envelope, cup angle and oil).\n\n",
         num(eta0),
         num(skf_friction::DEFAULT_OIL_DENSITY),
         num(skf_friction::K_RS_OIL_BATH_OR_JET),
@@ -2152,16 +2152,28 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
     let p_load = skf_quasi_static(published, &trb, &at_loads(3500.0), false)?;
     let a_speed = skf_quasi_static(apex_file, &trb, &at(&speeds, 30e3), true)?;
     let a_load = skf_quasi_static(apex_file, &trb, &at_loads(3500.0), false)?;
-    md += &skf_table(ledger, "TRB130x230 as published, Fa 30 kN", "speed (rpm)", &p_speed, "fidelity 0");
-    md += &skf_table(ledger, "TRB130x230 as published, 3500 rpm", "Fa (kN)", &p_load, "fidelity 0");
     md += &skf_table(
         ledger,
-        "TRB130x230 apex-consistent, Fa 30 kN",
+        "TRB130x230-W25 (as published), Fa 30 kN",
+        "speed (rpm)",
+        &p_speed,
+        "fidelity 0",
+    );
+    md += &skf_table(ledger, "TRB130x230-W25 (as published), 3500 rpm", "Fa (kN)", &p_load, "fidelity 0");
+    md += &skf_table(
+        ledger,
+        "TRB130x230 (the default, apex-consistent), Fa 30 kN",
         "speed (rpm)",
         &a_speed,
         "fidelity 0",
     );
-    md += &skf_table(ledger, "TRB130x230 apex-consistent, 3500 rpm", "Fa (kN)", &a_load, "fidelity 0");
+    md += &skf_table(
+        ledger,
+        "TRB130x230 (the default, apex-consistent), 3500 rpm",
+        "Fa (kN)",
+        &a_load,
+        "fidelity 0",
+    );
     for fa in [10e3, 2e3] {
         let pts = skf_quasi_static("validate/skf_32008.json", &small, &at(&speeds_32008, fa), true)?;
         md += &skf_table(
@@ -2191,14 +2203,14 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
     let d_apex = dynamic(apex, &APEX_DYNAMIC, &apex_speeds, &|i| apex_speeds[i], &|_| 30e3);
     md += &skf_table(
         ledger,
-        "TRB130x230 as published, Fa 30 kN",
+        "TRB130x230-W25 (as published), Fa 30 kN",
         "speed (rpm)",
         &d_speed,
         &format!("fidelity 1, {} ms runs", num(plan.run_length_ms())),
     );
     md += &skf_table(
         ledger,
-        "TRB130x230 as published, 3500 rpm",
+        "TRB130x230-W25 (as published), 3500 rpm",
         "Fa (kN)",
         &d_load,
         &format!("fidelity 1, {} ms runs", num(plan.run_length_ms())),
@@ -2206,7 +2218,7 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
     if !d_apex.is_empty() {
         md += &skf_table(
             ledger,
-            "TRB130x230 apex-consistent, Fa 30 kN",
+            "TRB130x230 (the default, apex-consistent), Fa 30 kN",
             "speed (rpm)",
             &d_apex,
             &format!(
@@ -2224,8 +2236,8 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
                 ledger.fact(
                     "SKF",
                     format!(
-                        "at 3500 rpm and Fa 30 kN (fidelity 0, traction {}) the product gives {} N m for TRB130x230 as \
-                         published and {} N m apex-consistent ({:+.0} %), SKF {} N m for both",
+                        "at 3500 rpm and Fa 30 kN (fidelity 0, traction {}) the product gives {} N m for TRB130x230-W25 \
+                         (as published) and {} N m for the default TRB130x230 (apex-consistent, {:+.0} %), SKF {} N m for both",
                         TRACTIONS[t],
                         num(p.0),
                         num(a.0),
@@ -2398,7 +2410,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
             &plan,
             &scenarios_dir().join("validate"),
             APEX_DYNAMIC.to_vec(),
-            "apex-consistent TRB130x230",
+            "the default TRB130x230 (apex-consistent)",
             &mut ledger,
         )
     };

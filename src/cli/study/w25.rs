@@ -356,7 +356,7 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
         reference.torque,
         reference.power,
         reference.torque * reference.speed_rpm * std::f64::consts::PI / 30.0,
-        trb::bearing::Bearing::default_preset().tolerance,
+        trb::bearing::Bearing::preset("TRB130x230-W25").expect("preset").tolerance,
         reference.wall / reference.simulated,
         reference.rhs as f64 / reference.simulated,
         reference.steps as f64 / reference.simulated
@@ -567,11 +567,11 @@ pub fn report(docs: &Path) -> Result<(), CliError> {
         "# The dynamic study's cases, as the product computes them\n\n\
          Written by `cargo run --release -- study w25` (src/cli/study/w25.rs) from the scenarios in \
          `scenarios/w25_dynamic/` (run any of them with `trb simulate`). Every number comes from the dynamic model \
-         the FMU runs at `fidelity` = 1 (docs/dynamic.md) for the TRB130x230 preset as published, 20 slices, \
+         the FMU runs at `fidelity` = 1 (docs/dynamic.md) for the TRB130x230-W25 preset ([W25] Table 1 and Eq. (1) as printed), 20 slices, \
          tolerance {:e} (the preset's), 50 ms per case, from the steady running state where there is one (`startSteady`: no radial \
          load, no deflection) and run in at the initial inputs otherwise (docs/dynamic.md). Source: [W25] Wu, Kang, Deng, Lubricants \
          13(10):438, 2025. Angles in degrees (tilt in millidegrees).\n\n{md}",
-        trb::bearing::Bearing::default_preset().tolerance
+        trb::bearing::Bearing::preset("TRB130x230-W25").expect("preset").tolerance
     );
     let path = docs.join("results-dynamic.md");
     std::fs::write(&path, doc).map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))?;
