@@ -21,8 +21,8 @@ import drivetrain as dt  # noqa: E402
 
 
 @pytest.fixture(scope="module")
-def fmus(fmu_path):
-    return fmu_path, dt.build_shaft_fmu()
+def fmus(package_preset):
+    return package_preset(dt.BEARING_PRESET), dt.build_shaft_fmu()
 
 
 def run(fmus, **kw):
