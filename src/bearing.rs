@@ -8,6 +8,8 @@
 //! Errors name the offending field by its path in the file (for example
 //! `rollers.length_mm: must be a finite number > 0, got -3`).
 
+use crate::catalogue::{defaults, Catalogue};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::fmt;
@@ -20,6 +22,13 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("CRB-TRILOBE", include_str!("../presets/CRB-TRILOBE.json")),
     ("TRB130x230-W25", include_str!("../presets/TRB130x230-W25.json")),
 ];
+
+/// The JSON Schema (draft 2020-12) of a bearing file, derived from the same structures that
+/// read it; shipped as `presets/bearing.schema.json` (a test keeps the two equal).
+pub fn bearing_file_schema() -> String {
+    let schema = schemars::schema_for!(BearingFile);
+    serde_json::to_string_pretty(&schema).expect("a schema serialises") + "\n"
+}
 
 /// Name of the default preset.
 pub const DEFAULT_PRESET: &str = "TRB130x230";
@@ -54,9 +63,13 @@ fn err(field: &str, message: impl Into<String>) -> BearingError {
 // File schema (units in the field names)
 // ---------------------------------------------------------------------------------------
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BearingFile {
+    /// The JSON Schema an editor validates the file against (for example
+    /// `"bearing.schema.json"`, shipped beside the presets); not read otherwise.
+    #[serde(rename = "$schema", default, skip_serializing_if = "Option::is_none")]
+    pub schema: Option<String>,
     pub name: String,
     #[serde(default)]
     pub description: String,
@@ -64,38 +77,57 @@ pub struct BearingFile {
     pub source: String,
     /// `tapered` or `cylindrical`.
     pub kind: Kind,
-    pub envelope: EnvelopeFile,
-    pub rollers: RollersFile,
-    pub pitch_diameter_mm: f64,
+    /// Catalogue data of a tapered roller bearing (`catalogue::Catalogue`), given instead of the
+    /// internal geometry (envelope, rollers, pitch diameter, raceway angles, flange): the
+    /// geometry is then estimated from it as `trb bearing estimate` does.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub catalogue: Option<Catalogue>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub envelope: Option<EnvelopeFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rollers: Option<RollersFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_diameter_mm: Option<f64>,
     /// Cone (inner raceway) contact angle to the bearing axis.
-    pub cone_angle_deg: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cone_angle_deg: Option<f64>,
     /// Cup (outer raceway) contact angle to the bearing axis.
-    pub cup_angle_deg: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cup_angle_deg: Option<f64>,
     /// Flange (rib) geometry; absent for bearings without a loaded flange (cylindrical).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flange: Option<FlangeFile>,
-    pub materials: MaterialsFile,
-    pub contact_law: ContactLaw,
-    pub cage: CageFile,
-    pub lubricant: LubricantFile,
-    pub friction: FrictionFile,
+    // The sections below have documented defaults (`catalogue::defaults`) when absent; the
+    // bearing then lists each default it took in its `documented_defaults`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub materials: Option<MaterialsFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_law: Option<ContactLaw>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cage: Option<CageFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lubricant: Option<LubricantFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionFile>,
     #[serde(default)]
     pub raceway: RacewayFile,
-    pub solver: SolverFile,
-    pub operating_point: OperatingPointFile,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver: Option<SolverFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub operating_point: Option<OperatingPointFile>,
     /// Human-readable notes: which values are documented defaults and why.
     #[serde(default)]
     pub documented_defaults: Vec<String>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Kind {
     Tapered,
     Cylindrical,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactLaw {
     /// Johnson's line contact (Contact Mechanics, 1985) in the slice form of [W25], with the
@@ -109,7 +141,7 @@ pub enum ContactLaw {
     Palmgren,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EnvelopeFile {
     pub bore_mm: f64,
@@ -117,44 +149,44 @@ pub struct EnvelopeFile {
     pub width_mm: f64,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RollersFile {
     pub count: i64,
     /// Effective contact length, measured along the roller axis.
     pub length_mm: f64,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mean_diameter_mm: Option<f64>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub large_end_diameter_mm: Option<f64>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub small_end_diameter_mm: Option<f64>,
     /// Half-cone angle; if absent, (cup angle - cone angle)/2.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub half_cone_angle_deg: Option<f64>,
     /// Radius of the spherical large end; if absent, the roller's apex distance.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub end_radius_mm: Option<f64>,
     #[serde(default)]
     pub crown_drop_um: f64,
 }
 
 /// Flange (rib) geometry in one of the conventions the studies use.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FlangeFile {
     /// Angle between the flange contact normal and the radial plane (Harris; [W25] 83 deg).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_angle_deg: Option<f64>,
     /// Angle between the rib face normal and the bearing axis ([D19] "flange opening angle").
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub opening_angle_deg: Option<f64>,
     /// Angle between the rib face and the roller axis ([L22] "flange angle", rad).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub face_to_roller_axis_rad: Option<f64>,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialFile {
     #[serde(rename = "E_GPa")]
@@ -163,7 +195,7 @@ pub struct MaterialFile {
     pub density_kg_m3: f64,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialsFile {
     pub roller: MaterialFile,
@@ -171,7 +203,7 @@ pub struct MaterialsFile {
     pub cage: MaterialFile,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CageFile {
     pub pocket_clearance_mm: f64,
@@ -181,7 +213,7 @@ pub struct CageFile {
     pub mass_kg: f64,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LubricantFile {
     #[serde(rename = "eta0_Pa_s")]
@@ -208,7 +240,7 @@ pub struct LubricantFile {
 
 /// The oil's traction data in a bearing file: every field optional, with the documented
 /// defaults of [`OilTraction::default`].
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OilTractionFile {
     #[serde(rename = "eyring_stress_MPa", default, skip_serializing_if = "Option::is_none")]
@@ -257,14 +289,14 @@ impl Default for OilTraction {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum LubricationModel {
     Ehl,
     Dry,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionFile {
     pub model: LubricationModel,
@@ -276,7 +308,7 @@ pub struct FrictionFile {
     pub flange_roughness_um: Option<f64>,
 }
 
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RacewayFile {
     #[serde(default)]
@@ -287,21 +319,21 @@ pub struct RacewayFile {
     pub outer_waveform_um: f64,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolverFile {
     pub slices: i64,
     pub tolerance: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum PreloadFile {
     Force,
     Displacement,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OperatingPointFile {
     pub speed_rpm: f64,
@@ -507,19 +539,129 @@ pub const OIL_T_MIN_C: f64 = -40.0;
 pub const OIL_T_MAX_C: f64 = 200.0;
 const UM: f64 = 1e-6;
 
+/// A required field, or the error naming it.
+fn need<'a, T>(v: &'a Option<T>, field: &str) -> Result<&'a T, BearingError> {
+    v.as_ref().ok_or_else(|| {
+        err(
+            field,
+            format!("missing field `{field}` (give the internal geometry, or a `catalogue` block instead)"),
+        )
+    })
+}
+
+/// A section with a documented default: the file's, or the default with its note added.
+fn or_default<T: Clone>(v: &Option<T>, default: impl FnOnce() -> T, note: &str, notes: &mut Vec<String>) -> T {
+    match v {
+        Some(v) => v.clone(),
+        None => {
+            notes.push(note.to_string());
+            default()
+        }
+    }
+}
+
 impl BearingFile {
-    /// Validate and convert to SI.
+    /// Validate and convert to SI: a `catalogue` block is estimated first
+    /// ([`Catalogue::estimate`]); absent sections take their documented defaults.
     pub fn to_bearing(&self) -> Result<Bearing, BearingError> {
+        match &self.catalogue {
+            Some(c) => self.estimated(c)?.validate(),
+            None => self.validate(),
+        }
+    }
+
+    /// This file with its catalogue block replaced by the estimated internal geometry.
+    fn estimated(&self, catalogue: &Catalogue) -> Result<BearingFile, BearingError> {
+        let geometry_given: Vec<&str> = [
+            ("envelope", self.envelope.is_some()),
+            ("rollers", self.rollers.is_some()),
+            ("pitch_diameter_mm", self.pitch_diameter_mm.is_some()),
+            ("cone_angle_deg", self.cone_angle_deg.is_some()),
+            ("cup_angle_deg", self.cup_angle_deg.is_some()),
+            ("flange", self.flange.is_some()),
+        ]
+        .iter()
+        .filter(|(_, given)| *given)
+        .map(|(name, _)| *name)
+        .collect();
+        if !geometry_given.is_empty() {
+            return Err(err(
+                "catalogue",
+                format!(
+                    "give either a catalogue block or the internal geometry, not both (the file also gives {})",
+                    geometry_given.join(", ")
+                ),
+            ));
+        }
+        if self.kind != Kind::Tapered {
+            return Err(err("kind", "a catalogue block describes a tapered roller bearing"));
+        }
+        let estimate = catalogue.estimate().map_err(|faults| {
+            let field = format!("catalogue.{}", faults.0[0].file_key());
+            let all: Vec<String> = faults
+                .0
+                .iter()
+                .map(|f| format!("catalogue.{}: {}", f.file_key(), f.message))
+                .collect();
+            err(&field, all.join("; "))
+        })?;
+        let full = estimate.bearing_file(catalogue, &self.name);
+        let mut notes = estimate.geometry_notes(catalogue);
+        notes.extend(self.documented_defaults.iter().cloned());
+        let cage = match &self.cage {
+            Some(c) => Some(c.clone()),
+            None => {
+                notes.push(defaults::CAGE_NOTE.to_string());
+                full.cage.clone()
+            }
+        };
+        Ok(BearingFile {
+            schema: None,
+            name: self.name.clone(),
+            description: if self.description.is_empty() {
+                full.description
+            } else {
+                self.description.clone()
+            },
+            source: if self.source.is_empty() { full.source } else { self.source.clone() },
+            kind: Kind::Tapered,
+            catalogue: None,
+            envelope: full.envelope,
+            rollers: full.rollers,
+            pitch_diameter_mm: full.pitch_diameter_mm,
+            cone_angle_deg: full.cone_angle_deg,
+            cup_angle_deg: full.cup_angle_deg,
+            flange: full.flange,
+            materials: self.materials.clone(),
+            contact_law: self.contact_law,
+            cage,
+            lubricant: self.lubricant.clone(),
+            friction: self.friction.clone(),
+            raceway: self.raceway.clone(),
+            solver: self.solver.clone(),
+            operating_point: self.operating_point.clone(),
+            documented_defaults: notes,
+        })
+    }
+
+    /// Validate a file that gives its internal geometry and convert it to SI.
+    fn validate(&self) -> Result<Bearing, BearingError> {
         if self.name.trim().is_empty() {
             return Err(err("name", "must not be empty"));
         }
-        let bore = positive("envelope.bore_mm", self.envelope.bore_mm)? * MM;
-        let od = positive("envelope.outside_diameter_mm", self.envelope.outside_diameter_mm)? * MM;
-        let width = positive("envelope.width_mm", self.envelope.width_mm)? * MM;
+        let envelope = need(&self.envelope, "envelope")?;
+        let rollers = need(&self.rollers, "rollers")?;
+        let pitch_diameter_mm = *need(&self.pitch_diameter_mm, "pitch_diameter_mm")?;
+        let cone_angle_deg = *need(&self.cone_angle_deg, "cone_angle_deg")?;
+        let cup_angle_deg = *need(&self.cup_angle_deg, "cup_angle_deg")?;
+        let mut notes = self.documented_defaults.clone();
+        let bore = positive("envelope.bore_mm", envelope.bore_mm)? * MM;
+        let od = positive("envelope.outside_diameter_mm", envelope.outside_diameter_mm)? * MM;
+        let width = positive("envelope.width_mm", envelope.width_mm)? * MM;
         if od <= bore {
             return Err(err("envelope.outside_diameter_mm", "must exceed the bore"));
         }
-        let z = self.rollers.count;
+        let z = rollers.count;
         if z < 3 || z as usize > crate::variables::MAX_ROLLERS {
             return Err(err(
                 "rollers.count",
@@ -527,14 +669,14 @@ impl BearingFile {
             ));
         }
         let z = z as usize;
-        let length = positive("rollers.length_mm", self.rollers.length_mm)? * MM;
-        let cone = in_range("cone_angle_deg", self.cone_angle_deg, 0.0, 45.0)?.to_radians();
-        let cup = in_range("cup_angle_deg", self.cup_angle_deg, 0.0, 60.0)?.to_radians();
+        let length = positive("rollers.length_mm", rollers.length_mm)? * MM;
+        let cone = in_range("cone_angle_deg", cone_angle_deg, 0.0, 45.0)?.to_radians();
+        let cup = in_range("cup_angle_deg", cup_angle_deg, 0.0, 60.0)?.to_radians();
         if cup < cone {
             return Err(err("cup_angle_deg", "must not be smaller than cone_angle_deg"));
         }
         let half_from_angles = 0.5 * (cup - cone);
-        let half = match self.rollers.half_cone_angle_deg {
+        let half = match rollers.half_cone_angle_deg {
             Some(h) => {
                 let h = in_range("rollers.half_cone_angle_deg", h, 0.0, 20.0)?.to_radians();
                 if (h - half_from_angles).abs() > 0.02_f64.to_radians() {
@@ -571,7 +713,7 @@ impl BearingFile {
         }
         // Roller diameters: mean, or large end, or both ends.
         let tan_h = libm::tan(half);
-        let r = &self.rollers;
+        let r = rollers;
         let mean_d = match (r.mean_diameter_mm, r.large_end_diameter_mm, r.small_end_diameter_mm) {
             (Some(m), None, None) => positive("rollers.mean_diameter_mm", m)? * MM,
             (None, Some(l), None) => positive("rollers.large_end_diameter_mm", l)? * MM - length * tan_h,
@@ -605,7 +747,7 @@ impl BearingFile {
         if mean_d <= 0.0 || length * tan_h >= mean_d {
             return Err(err("rollers.length_mm", "roller would have a non-positive small-end diameter"));
         }
-        let dm = positive("pitch_diameter_mm", self.pitch_diameter_mm)? * MM;
+        let dm = positive("pitch_diameter_mm", pitch_diameter_mm)? * MM;
         if dm <= bore || dm >= od {
             return Err(err(
                 "pitch_diameter_mm",
@@ -730,10 +872,13 @@ impl BearingFile {
         if crown > 0.05 * mean_d {
             return Err(err("rollers.crown_drop_um", "is larger than 5 % of the roller diameter"));
         }
-        let roller_material = material("materials.roller", &self.materials.roller)?;
-        let ring_material = material("materials.rings", &self.materials.rings)?;
-        let cage_material = material("materials.cage", &self.materials.cage)?;
-        let c = &self.cage;
+        let materials = or_default(&self.materials, defaults::materials, defaults::MATERIALS_NOTE, &mut notes);
+        let roller_material = material("materials.roller", &materials.roller)?;
+        let ring_material = material("materials.rings", &materials.rings)?;
+        let cage_material = material("materials.cage", &materials.cage)?;
+        let contact_law = or_default(&self.contact_law, || ContactLaw::Palmgren, defaults::CONTACT_LAW_NOTE, &mut notes);
+        let cage_default = || crate::catalogue::cage(z, mean_d / MM, length / MM, dm / MM);
+        let c = &or_default(&self.cage, cage_default, defaults::CAGE_NOTE, &mut notes);
         let pocket = non_negative("cage.pocket_clearance_mm", c.pocket_clearance_mm)? * MM;
         if pocket > 0.5 * mean_d {
             return Err(err("cage.pocket_clearance_mm", "exceeds half the roller diameter"));
@@ -742,7 +887,7 @@ impl BearingFile {
         let land_width = positive("cage.land_width_mm", c.land_width_mm)? * MM;
         let land_radius = positive("cage.land_radius_mm", c.land_radius_mm)? * MM;
         let cage_mass = positive("cage.mass_kg", c.mass_kg)?;
-        let l = &self.lubricant;
+        let l = &or_default(&self.lubricant, defaults::lubricant, defaults::LUBRICANT_NOTE, &mut notes);
         let eta0 = in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0)?;
         let nu40 = in_range("lubricant.nu40_mm2_s", l.nu40_mm2_s.unwrap_or(68.0), 0.1, 1e5)? * 1e-6;
         let nu100 = in_range("lubricant.nu100_mm2_s", l.nu100_mm2_s.unwrap_or(8.6), 0.1, 1e5)? * 1e-6;
@@ -808,7 +953,7 @@ impl BearingFile {
                 piezoviscosity: t.piezoviscosity.unwrap_or(d.piezoviscosity),
             }
         };
-        let f = &self.friction;
+        let f = &or_default(&self.friction, defaults::friction, defaults::FRICTION_NOTE, &mut notes);
         let mu = in_range("friction.mu", f.mu, 0.0, 2.0)?;
         let flange_mu0 = in_range("friction.flange_mu0", f.flange_mu0, 0.0, 2.0)?;
         let slip = in_range("friction.cage_slip_rate", f.cage_slip_rate, 0.0, 1.0)?;
@@ -831,7 +976,7 @@ impl BearingFile {
         if waveform > 0.05 * mean_d {
             return Err(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
         }
-        let s = &self.solver;
+        let s = &or_default(&self.solver, defaults::solver, defaults::SOLVER_NOTE, &mut notes);
         if s.slices < 2 || s.slices > 200 {
             return Err(err(
                 "solver.slices",
@@ -842,7 +987,17 @@ impl BearingFile {
             ));
         }
         let tolerance = in_range("solver.tolerance", s.tolerance, 1e-14, 0.1)?;
-        let op = &self.operating_point;
+        let op_default = || {
+            let rating = crate::rating::RatingGeometry {
+                z,
+                d_we: mean_d,
+                l_we: length,
+                d_pw: dm,
+                alpha: cup,
+            };
+            defaults::operating_point(crate::rating::basic_dynamic_load_rating(&rating), cup, dm / MM)
+        };
+        let op = &or_default(&self.operating_point, op_default, defaults::OPERATING_POINT_NOTE, &mut notes);
         let speed = finite("operating_point.speed_rpm", op.speed_rpm)? * PI / 30.0;
         let fx = finite("operating_point.Fx_N", op.fx_n)?;
         let fy = finite("operating_point.Fy_N", op.fy_n)?;
@@ -870,7 +1025,7 @@ impl BearingFile {
             roller_material,
             ring_material,
             cage_material,
-            contact_law: self.contact_law,
+            contact_law,
             pocket_clearance: pocket,
             guide_clearance: guide,
             land_width,
@@ -903,7 +1058,7 @@ impl BearingFile {
             zeta,
             axial_displacement: ad,
             displacement_preload: op.preload == PreloadFile::Displacement,
-            documented_defaults: self.documented_defaults.clone(),
+            documented_defaults: notes,
         })
     }
 }
@@ -925,6 +1080,17 @@ mod tests {
             assert_eq!(back.to_bits(), v.to_bits(), "{v:?}");
             v *= 1.013_7;
         }
+    }
+
+    /// The shipped schema is the one the reader's structures give (after a change of the file
+    /// format: `cargo run -- bearing schema --out presets/bearing.schema.json`).
+    #[test]
+    fn the_shipped_schema_is_the_readers() {
+        assert_eq!(
+            include_str!("../presets/bearing.schema.json"),
+            bearing_file_schema(),
+            "presets/bearing.schema.json is stale: cargo run -- bearing schema --out presets/bearing.schema.json"
+        );
     }
 
     #[test]

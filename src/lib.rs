@@ -2,7 +2,8 @@
 //! Co-Simulation FMU (`TaperedRollerBearing`).
 //!
 //! Layers, bottom up (physics never imports FMI):
-//! - [`bearing`]: bearing descriptions (presets, JSON files) and their validation
+//! - [`bearing`]: bearing descriptions (presets, JSON files) and their validation;
+//!   [`catalogue`]: the internal geometry of a tapered bearing estimated from its catalogue data
 //! - [`geometry`]: derived geometry, slices, contact points, mass properties
 //! - [`contact`]: contact laws (Johnson, Palmgren, Hertz point contact)
 //! - [`tribology`]: film thickness, traction, rolling resistance; [`journal_film`]: the
@@ -15,6 +16,7 @@
 //! - [`fmi`]: the FMI 2.0 C ABI adapter
 
 pub mod bearing;
+pub mod catalogue;
 pub mod contact;
 pub mod dynamic;
 pub mod ehl_line;

@@ -91,6 +91,7 @@ fn fmu_holds_exactly_the_required_entries_and_the_guid_of_its_bearing() {
     for (name, _) in PRESETS {
         want.insert(format!("resources/presets/{name}.json"));
     }
+    want.insert("resources/presets/bearing.schema.json".to_string());
     let got: BTreeSet<String> = entries.keys().cloned().collect();
     assert_eq!(got, want);
 
@@ -107,6 +108,10 @@ fn fmu_holds_exactly_the_required_entries_and_the_guid_of_its_bearing() {
     for (name, text) in PRESETS {
         assert_eq!(entries[&format!("resources/presets/{name}.json")], text.as_bytes(), "{name}");
     }
+    assert_eq!(
+        entries["resources/presets/bearing.schema.json"],
+        trb::bearing::bearing_file_schema().as_bytes()
+    );
     // The shared library is the crate's cdylib.
     let so = &entries["binaries/linux64/TaperedRollerBearing.so"];
     assert!(so.len() > 1000 && so.starts_with(b"\x7fELF"), "not an ELF shared library");
@@ -582,4 +587,67 @@ fn bearing_show_prints_every_preset_as_a_file_fmu_accepts() {
     let o = trb(&["bearing", "show", "no-such-bearing"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("presets are"), "{}", stderr(&o));
+}
+
+/// `trb bearing estimate` with the catalogues' own flags: the table, a bearing file the FMU
+/// packager takes, the same bearing from a file that carries the catalogue block, and bad data
+/// refused with exit code 2 naming every bad field.
+#[test]
+fn bearing_estimate_builds_a_bearing_from_catalogue_data() {
+    let s = Scratch::new("bearing_estimate");
+    let file = s.path("30206.json");
+    let flags = [
+        "bearing", "estimate", "--d", "30", "--D", "62", "--T", "17.25", "--B", "16", "--C", "14", "--Cr", "43000", "--e", "0.37", "--Y",
+        "1.6", "--name", "30206",
+    ];
+    let o = trb(&[&flags[..], &["--out", p(&file)]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = stdout(&o);
+    for needle in ["rollers Z", "roller mean diameter", "fill factor", "C_r from geometry", "43000 N"] {
+        assert!(table.contains(needle), "no {needle:?} in\n{table}");
+    }
+    let estimated = trb::bearing::Bearing::from_json(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    assert_eq!(estimated.name, "30206");
+    // without --out: the file on stdout, the table on stderr
+    let o = trb(&flags);
+    assert!(o.status.success() && stderr(&o).contains("rollers Z"), "{}", stderr(&o));
+    assert_eq!(stdout(&o), std::fs::read_to_string(&file).unwrap());
+
+    // a bearing file with the catalogue block packs into an FMU of the same bearing
+    let block = s.path("30206-catalogue.json");
+    std::fs::write(
+        &block,
+        r#"{"name": "30206", "kind": "tapered", "catalogue": {"d_mm": 30, "D_mm": 62, "T_mm": 17.25, "B_mm": 16, "C_mm": 14, "Cr_N": 43000, "e": 0.37, "Y": 1.6}}"#,
+    )
+    .unwrap();
+    let fmu = s.path("30206.fmu");
+    let lib = fake_library(&s);
+    let o = trb(&["fmu", "--bearing", p(&block), "--library", p(&lib), "--out", p(&fmu)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let xml = String::from_utf8(read_zip(&fmu)["modelDescription.xml"].clone()).unwrap();
+    let last = format!(r#"name="roller[{}].tilt""#, estimated.roller_count);
+    assert!(xml.contains(&last), "no {last}");
+    let from_block = trb::bearing::Bearing::from_name_or_file(p(&block)).unwrap();
+    assert_eq!(from_block.roller_count, estimated.roller_count);
+    assert_eq!(from_block.roller_length, estimated.roller_length);
+    assert_eq!(from_block.cone_angle, estimated.cone_angle);
+
+    for (bad, fields) in [
+        (vec!["--D", "25"], vec!["--D"]),
+        (vec!["--T", "15"], vec!["--T"]),
+        (vec!["--e", "1.4"], vec!["--e"]),
+        (vec!["--Cr", "900000"], vec!["--Cr"]),
+        (vec!["--d", "NaN", "--Cr", "-5"], vec!["--d", "--Cr"]),
+    ] {
+        let mut args: Vec<&str> = flags.to_vec();
+        for pair in bad.chunks(2) {
+            let at = args.iter().position(|a| *a == pair[0]).unwrap();
+            args[at + 1] = pair[1];
+        }
+        let o = trb(&args);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
+        for field in fields {
+            assert!(stderr(&o).contains(&format!("{field}:")), "{bad:?}: {}", stderr(&o));
+        }
+    }
 }

@@ -26,7 +26,7 @@
 use crate::fastmath as fm;
 
 /// Pressure-viscosity law of the oil (parameter `oil.piezoviscosity`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Piezoviscosity {
     /// eta0 exp(alpha p).
