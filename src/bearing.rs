@@ -560,6 +560,60 @@ fn or_default<T: Clone>(v: &Option<T>, default: impl FnOnce() -> T, note: &str, 
     }
 }
 
+/// The validated internal geometry of a bearing file (SI: m, rad).
+struct InternalGeometry {
+    bore: f64,
+    od: f64,
+    width: f64,
+    z: usize,
+    length: f64,
+    mean_d: f64,
+    half: f64,
+    end_radius: f64,
+    dm: f64,
+    cone: f64,
+    cup: f64,
+    flange_angle: Option<f64>,
+    crown: f64,
+}
+
+/// The faults of one bearing file, collected so that one run names them all.
+#[derive(Default)]
+struct Faults(Vec<BearingError>);
+
+impl Faults {
+    fn push(&mut self, e: BearingError) {
+        self.0.push(e);
+    }
+
+    /// The value, or `None` with its fault recorded.
+    fn take<T>(&mut self, r: Result<T, BearingError>) -> Option<T> {
+        r.map_err(|e| self.push(e)).ok()
+    }
+
+    /// A checked number, or NaN with its fault recorded (NaN fails no later comparison, so a
+    /// fault is not reported twice through the checks that use it).
+    fn num(&mut self, r: Result<f64, BearingError>) -> f64 {
+        self.take(r).unwrap_or(f64::NAN)
+    }
+
+    /// One error naming the first fault's field and listing every fault.
+    fn into_result(self) -> Result<(), BearingError> {
+        let mut all = self.0.into_iter();
+        let Some(first) = all.next() else {
+            return Ok(());
+        };
+        let mut message = first.message;
+        for e in all {
+            message.push_str(&format!("; field `{}`: {}", e.field, e.message));
+        }
+        Err(BearingError {
+            field: first.field,
+            message,
+        })
+    }
+}
+
 impl BearingFile {
     /// Validate and convert to SI: a `catalogue` block is estimated first
     /// ([`Catalogue::estimate`]); absent sections take their documented defaults.
@@ -644,17 +698,246 @@ impl BearingFile {
         })
     }
 
-    /// Validate a file that gives its internal geometry and convert it to SI.
+    /// Validate a file that gives its internal geometry and convert it to SI. Every section is
+    /// checked, so one run names every fault (the geometry's first: its checks build on each
+    /// other).
     fn validate(&self) -> Result<Bearing, BearingError> {
+        let mut faults = Faults::default();
         if self.name.trim().is_empty() {
-            return Err(err("name", "must not be empty"));
+            faults.push(err("name", "must not be empty"));
         }
+        let mut notes = self.documented_defaults.clone();
+        let g = faults.take(self.geometry());
+        let mean_d = g.as_ref().map_or(f64::NAN, |g| g.mean_d);
+        let materials = or_default(&self.materials, defaults::materials, defaults::MATERIALS_NOTE, &mut notes);
+        let roller_material = faults.take(material("materials.roller", &materials.roller));
+        let ring_material = faults.take(material("materials.rings", &materials.rings));
+        let cage_material = faults.take(material("materials.cage", &materials.cage));
+        let contact_law = or_default(&self.contact_law, || ContactLaw::Palmgren, defaults::CONTACT_LAW_NOTE, &mut notes);
+        let cage_default = || match &g {
+            Some(g) => crate::catalogue::cage(g.z, g.mean_d / MM, g.length / MM, g.dm / MM),
+            // no geometry to size it by: the geometry's fault is reported
+            None => defaults::placeholder_cage(),
+        };
+        let c = &or_default(&self.cage, cage_default, defaults::CAGE_NOTE, &mut notes);
+        let pocket = faults.num(non_negative("cage.pocket_clearance_mm", c.pocket_clearance_mm)) * MM;
+        if pocket > 0.5 * mean_d {
+            faults.push(err("cage.pocket_clearance_mm", "exceeds half the roller diameter"));
+        }
+        let guide = faults.num(non_negative("cage.guide_clearance_mm", c.guide_clearance_mm)) * MM;
+        let land_width = faults.num(positive("cage.land_width_mm", c.land_width_mm)) * MM;
+        let land_radius = faults.num(positive("cage.land_radius_mm", c.land_radius_mm)) * MM;
+        let cage_mass = faults.num(positive("cage.mass_kg", c.mass_kg));
+        let l = &or_default(&self.lubricant, defaults::lubricant, defaults::LUBRICANT_NOTE, &mut notes);
+        let eta0 = faults.num(in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0));
+        let nu40 = faults.num(in_range("lubricant.nu40_mm2_s", l.nu40_mm2_s.unwrap_or(68.0), 0.1, 1e5)) * 1e-6;
+        let nu100 = faults.num(in_range("lubricant.nu100_mm2_s", l.nu100_mm2_s.unwrap_or(8.6), 0.1, 1e5)) * 1e-6;
+        if nu100 >= nu40 {
+            faults.push(err(
+                "lubricant.nu100_mm2_s",
+                "must be below nu40_mm2_s (viscosity falls with temperature)",
+            ));
+        }
+        let oil_density = faults.num(in_range("lubricant.density_kg_m3", l.density_kg_m3.unwrap_or(870.0), 500.0, 2000.0));
+        let grade = crate::tribology::OilGrade::new(nu40, nu100, oil_density);
+        let oil_temperature = match l.temperature_c {
+            Some(c) => faults.num(in_range("lubricant.temperature_C", c, OIL_T_MIN_C, OIL_T_MAX_C)) + 273.15,
+            // where the grade has eta0 (clamped to the law's range: eta0 holds at the reference
+            // temperature whatever it is, the grade then only shapes the dependence)
+            None => grade.temperature_for(eta0).clamp(OIL_T_MIN_C + 273.15, OIL_T_MAX_C + 273.15),
+        };
+        let alpha = faults.num(in_range("lubricant.alpha_per_Pa", l.alpha_per_pa, 0.0, 1e-7));
+        let roughness = faults.num(in_range("lubricant.roughness_um", l.roughness_um, 0.0, 100.0)) * UM;
+        let oil_traction = {
+            let d = OilTraction::default();
+            let t = l.traction.clone().unwrap_or_default();
+            let or = |field: &str, v: Option<f64>, lo: f64, hi: f64, scale: f64, default: f64| -> Result<f64, BearingError> {
+                match v {
+                    Some(v) => Ok(in_range(field, v, lo, hi)? * scale),
+                    None => Ok(default),
+                }
+            };
+            OilTraction {
+                eyring_stress: faults.num(or(
+                    "lubricant.traction.eyring_stress_MPa",
+                    t.eyring_stress_mpa,
+                    0.01,
+                    100.0,
+                    1e6,
+                    d.eyring_stress,
+                )),
+                limiting_shear: faults.num(or(
+                    "lubricant.traction.limiting_shear",
+                    t.limiting_shear,
+                    0.001,
+                    0.3,
+                    1.0,
+                    d.limiting_shear,
+                )),
+                shear_modulus: faults.num(or(
+                    "lubricant.traction.shear_modulus_GPa",
+                    t.shear_modulus_gpa,
+                    0.0,
+                    100.0,
+                    1e9,
+                    d.shear_modulus,
+                )),
+                beta: faults.num(or("lubricant.traction.beta_per_K", t.beta_per_k, 0.0, 0.2, 1.0, d.beta)),
+                conductivity: faults.num(or(
+                    "lubricant.traction.conductivity_W_mK",
+                    t.conductivity_w_mk,
+                    0.01,
+                    10.0,
+                    1.0,
+                    d.conductivity,
+                )),
+                piezoviscosity: t.piezoviscosity.unwrap_or(d.piezoviscosity),
+            }
+        };
+        let f = &or_default(&self.friction, defaults::friction, defaults::FRICTION_NOTE, &mut notes);
+        let mu = faults.num(in_range("friction.mu", f.mu, 0.0, 2.0));
+        let flange_mu0 = faults.num(in_range("friction.flange_mu0", f.flange_mu0, 0.0, 2.0));
+        let slip = faults.num(in_range("friction.cage_slip_rate", f.cage_slip_rate, 0.0, 1.0));
+        let flange_roughness = match f.flange_roughness_um {
+            Some(v) => faults.num(in_range("friction.flange_roughness_um", v, 0.0, 100.0)) * UM,
+            None => roughness,
+        };
+        let rw = &self.raceway;
+        let clearance = faults.num(finite("raceway.clearance_um", rw.clearance_um)) * UM;
+        if clearance.abs() > 0.05 * mean_d {
+            faults.push(err("raceway.clearance_um", "magnitude exceeds 5 % of the roller diameter"));
+        }
+        if rw.outer_lobes < 0 || rw.outer_lobes > 64 {
+            faults.push(err(
+                "raceway.outer_lobes",
+                format!("must be an integer in [0, 64], got {}", rw.outer_lobes),
+            ));
+        }
+        let waveform = faults.num(non_negative("raceway.outer_waveform_um", rw.outer_waveform_um)) * UM;
+        if waveform > 0.05 * mean_d {
+            faults.push(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
+        }
+        let s = &or_default(&self.solver, defaults::solver, defaults::SOLVER_NOTE, &mut notes);
+        if s.slices < 2 || s.slices > 200 {
+            faults.push(err(
+                "solver.slices",
+                format!(
+                    "must be an integer in [2, 200] (one slice gives a roller no tilt stiffness), got {}",
+                    s.slices
+                ),
+            ));
+        }
+        let tolerance = faults.num(in_range("solver.tolerance", s.tolerance, 1e-14, 0.1));
+        let op_default = || match &g {
+            Some(g) => {
+                let rating = crate::rating::RatingGeometry {
+                    z: g.z,
+                    d_we: g.mean_d,
+                    l_we: g.length,
+                    d_pw: g.dm,
+                    alpha: g.cup,
+                };
+                defaults::operating_point(crate::rating::basic_dynamic_load_rating(&rating), g.cup, g.dm / MM)
+            }
+            // no geometry to take P = 0.1 C_r from: the geometry's fault is reported
+            None => defaults::operating_point(0.0, 0.0, 1.0),
+        };
+        let op = &or_default(&self.operating_point, op_default, defaults::OPERATING_POINT_NOTE, &mut notes);
+        let speed = faults.num(finite("operating_point.speed_rpm", op.speed_rpm)) * PI / 30.0;
+        let fx = faults.num(finite("operating_point.Fx_N", op.fx_n));
+        let fy = faults.num(finite("operating_point.Fy_N", op.fy_n));
+        let fz = faults.num(finite("operating_point.Fz_N", op.fz_n));
+        let xi = faults.num(in_range("operating_point.xi_deg", op.xi_deg, -5.0, 5.0)).to_radians();
+        let zeta = faults
+            .num(in_range("operating_point.zeta_deg", op.zeta_deg, -5.0, 5.0))
+            .to_radians();
+        let ad = faults.num(finite("operating_point.axial_displacement_um", op.axial_displacement_um)) * UM;
+        faults.into_result()?;
+        let g = g.expect("no fault: the geometry is valid");
+        let InternalGeometry {
+            bore,
+            od,
+            width,
+            z,
+            length,
+            mean_d,
+            half,
+            end_radius,
+            dm,
+            cone,
+            cup,
+            flange_angle,
+            crown,
+        } = g;
+        let (roller_material, ring_material, cage_material) = (
+            roller_material.expect("no fault"),
+            ring_material.expect("no fault"),
+            cage_material.expect("no fault"),
+        );
+        Ok(Bearing {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            source: self.source.clone(),
+            kind: self.kind,
+            bore,
+            outside_diameter: od,
+            width,
+            roller_count: z,
+            roller_length: length,
+            roller_mean_diameter: mean_d,
+            roller_half_angle: half,
+            roller_end_radius: end_radius,
+            pitch_diameter: dm,
+            cone_angle: cone,
+            cup_angle: cup,
+            flange_angle,
+            roller_material,
+            ring_material,
+            cage_material,
+            contact_law,
+            pocket_clearance: pocket,
+            guide_clearance: guide,
+            land_width,
+            land_radius,
+            cage_mass,
+            eta0,
+            oil_nu40: nu40,
+            oil_nu100: nu100,
+            oil_density,
+            oil_temperature,
+            alpha,
+            roughness,
+            oil_traction,
+            flange_roughness,
+            lubrication: f.model,
+            mu,
+            flange_mu0,
+            cage_slip_rate: slip,
+            crown_drop: crown,
+            clearance,
+            outer_lobes: rw.outer_lobes as u32,
+            outer_waveform: waveform,
+            slices: s.slices as usize,
+            tolerance,
+            speed,
+            fx,
+            fy,
+            fz,
+            xi,
+            zeta,
+            axial_displacement: ad,
+            displacement_preload: op.preload == PreloadFile::Displacement,
+            documented_defaults: notes,
+        })
+    }
+
+    /// The internal geometry of a file that gives it, validated (SI).
+    fn geometry(&self) -> Result<InternalGeometry, BearingError> {
         let envelope = need(&self.envelope, "envelope")?;
         let rollers = need(&self.rollers, "rollers")?;
         let pitch_diameter_mm = *need(&self.pitch_diameter_mm, "pitch_diameter_mm")?;
         let cone_angle_deg = *need(&self.cone_angle_deg, "cone_angle_deg")?;
         let cup_angle_deg = *need(&self.cup_angle_deg, "cup_angle_deg")?;
-        let mut notes = self.documented_defaults.clone();
         let bore = positive("envelope.bore_mm", envelope.bore_mm)? * MM;
         let od = positive("envelope.outside_diameter_mm", envelope.outside_diameter_mm)? * MM;
         let width = positive("envelope.width_mm", envelope.width_mm)? * MM;
@@ -872,193 +1155,20 @@ impl BearingFile {
         if crown > 0.05 * mean_d {
             return Err(err("rollers.crown_drop_um", "is larger than 5 % of the roller diameter"));
         }
-        let materials = or_default(&self.materials, defaults::materials, defaults::MATERIALS_NOTE, &mut notes);
-        let roller_material = material("materials.roller", &materials.roller)?;
-        let ring_material = material("materials.rings", &materials.rings)?;
-        let cage_material = material("materials.cage", &materials.cage)?;
-        let contact_law = or_default(&self.contact_law, || ContactLaw::Palmgren, defaults::CONTACT_LAW_NOTE, &mut notes);
-        let cage_default = || crate::catalogue::cage(z, mean_d / MM, length / MM, dm / MM);
-        let c = &or_default(&self.cage, cage_default, defaults::CAGE_NOTE, &mut notes);
-        let pocket = non_negative("cage.pocket_clearance_mm", c.pocket_clearance_mm)? * MM;
-        if pocket > 0.5 * mean_d {
-            return Err(err("cage.pocket_clearance_mm", "exceeds half the roller diameter"));
-        }
-        let guide = non_negative("cage.guide_clearance_mm", c.guide_clearance_mm)? * MM;
-        let land_width = positive("cage.land_width_mm", c.land_width_mm)? * MM;
-        let land_radius = positive("cage.land_radius_mm", c.land_radius_mm)? * MM;
-        let cage_mass = positive("cage.mass_kg", c.mass_kg)?;
-        let l = &or_default(&self.lubricant, defaults::lubricant, defaults::LUBRICANT_NOTE, &mut notes);
-        let eta0 = in_range("lubricant.eta0_Pa_s", l.eta0_pa_s, 1e-5, 100.0)?;
-        let nu40 = in_range("lubricant.nu40_mm2_s", l.nu40_mm2_s.unwrap_or(68.0), 0.1, 1e5)? * 1e-6;
-        let nu100 = in_range("lubricant.nu100_mm2_s", l.nu100_mm2_s.unwrap_or(8.6), 0.1, 1e5)? * 1e-6;
-        if nu100 >= nu40 {
-            return Err(err(
-                "lubricant.nu100_mm2_s",
-                "must be below nu40_mm2_s (viscosity falls with temperature)",
-            ));
-        }
-        let oil_density = in_range("lubricant.density_kg_m3", l.density_kg_m3.unwrap_or(870.0), 500.0, 2000.0)?;
-        let grade = crate::tribology::OilGrade::new(nu40, nu100, oil_density);
-        let oil_temperature = match l.temperature_c {
-            Some(c) => in_range("lubricant.temperature_C", c, OIL_T_MIN_C, OIL_T_MAX_C)? + 273.15,
-            // where the grade has eta0 (clamped to the law's range: eta0 holds at the reference
-            // temperature whatever it is, the grade then only shapes the dependence)
-            None => grade.temperature_for(eta0).clamp(OIL_T_MIN_C + 273.15, OIL_T_MAX_C + 273.15),
-        };
-        let alpha = in_range("lubricant.alpha_per_Pa", l.alpha_per_pa, 0.0, 1e-7)?;
-        let roughness = in_range("lubricant.roughness_um", l.roughness_um, 0.0, 100.0)? * UM;
-        let oil_traction = {
-            let d = OilTraction::default();
-            let t = l.traction.clone().unwrap_or_default();
-            let or = |field: &str, v: Option<f64>, lo: f64, hi: f64, scale: f64, default: f64| -> Result<f64, BearingError> {
-                match v {
-                    Some(v) => Ok(in_range(field, v, lo, hi)? * scale),
-                    None => Ok(default),
-                }
-            };
-            OilTraction {
-                eyring_stress: or(
-                    "lubricant.traction.eyring_stress_MPa",
-                    t.eyring_stress_mpa,
-                    0.01,
-                    100.0,
-                    1e6,
-                    d.eyring_stress,
-                )?,
-                limiting_shear: or(
-                    "lubricant.traction.limiting_shear",
-                    t.limiting_shear,
-                    0.001,
-                    0.3,
-                    1.0,
-                    d.limiting_shear,
-                )?,
-                shear_modulus: or(
-                    "lubricant.traction.shear_modulus_GPa",
-                    t.shear_modulus_gpa,
-                    0.0,
-                    100.0,
-                    1e9,
-                    d.shear_modulus,
-                )?,
-                beta: or("lubricant.traction.beta_per_K", t.beta_per_k, 0.0, 0.2, 1.0, d.beta)?,
-                conductivity: or(
-                    "lubricant.traction.conductivity_W_mK",
-                    t.conductivity_w_mk,
-                    0.01,
-                    10.0,
-                    1.0,
-                    d.conductivity,
-                )?,
-                piezoviscosity: t.piezoviscosity.unwrap_or(d.piezoviscosity),
-            }
-        };
-        let f = &or_default(&self.friction, defaults::friction, defaults::FRICTION_NOTE, &mut notes);
-        let mu = in_range("friction.mu", f.mu, 0.0, 2.0)?;
-        let flange_mu0 = in_range("friction.flange_mu0", f.flange_mu0, 0.0, 2.0)?;
-        let slip = in_range("friction.cage_slip_rate", f.cage_slip_rate, 0.0, 1.0)?;
-        let flange_roughness = match f.flange_roughness_um {
-            Some(v) => in_range("friction.flange_roughness_um", v, 0.0, 100.0)? * UM,
-            None => roughness,
-        };
-        let rw = &self.raceway;
-        let clearance = finite("raceway.clearance_um", rw.clearance_um)? * UM;
-        if clearance.abs() > 0.05 * mean_d {
-            return Err(err("raceway.clearance_um", "magnitude exceeds 5 % of the roller diameter"));
-        }
-        if rw.outer_lobes < 0 || rw.outer_lobes > 64 {
-            return Err(err(
-                "raceway.outer_lobes",
-                format!("must be an integer in [0, 64], got {}", rw.outer_lobes),
-            ));
-        }
-        let waveform = non_negative("raceway.outer_waveform_um", rw.outer_waveform_um)? * UM;
-        if waveform > 0.05 * mean_d {
-            return Err(err("raceway.outer_waveform_um", "exceeds 5 % of the roller diameter"));
-        }
-        let s = &or_default(&self.solver, defaults::solver, defaults::SOLVER_NOTE, &mut notes);
-        if s.slices < 2 || s.slices > 200 {
-            return Err(err(
-                "solver.slices",
-                format!(
-                    "must be an integer in [2, 200] (one slice gives a roller no tilt stiffness), got {}",
-                    s.slices
-                ),
-            ));
-        }
-        let tolerance = in_range("solver.tolerance", s.tolerance, 1e-14, 0.1)?;
-        let op_default = || {
-            let rating = crate::rating::RatingGeometry {
-                z,
-                d_we: mean_d,
-                l_we: length,
-                d_pw: dm,
-                alpha: cup,
-            };
-            defaults::operating_point(crate::rating::basic_dynamic_load_rating(&rating), cup, dm / MM)
-        };
-        let op = &or_default(&self.operating_point, op_default, defaults::OPERATING_POINT_NOTE, &mut notes);
-        let speed = finite("operating_point.speed_rpm", op.speed_rpm)? * PI / 30.0;
-        let fx = finite("operating_point.Fx_N", op.fx_n)?;
-        let fy = finite("operating_point.Fy_N", op.fy_n)?;
-        let fz = finite("operating_point.Fz_N", op.fz_n)?;
-        let xi = in_range("operating_point.xi_deg", op.xi_deg, -5.0, 5.0)?.to_radians();
-        let zeta = in_range("operating_point.zeta_deg", op.zeta_deg, -5.0, 5.0)?.to_radians();
-        let ad = finite("operating_point.axial_displacement_um", op.axial_displacement_um)? * UM;
-        Ok(Bearing {
-            name: self.name.clone(),
-            description: self.description.clone(),
-            source: self.source.clone(),
-            kind: self.kind,
+        Ok(InternalGeometry {
             bore,
-            outside_diameter: od,
+            od,
             width,
-            roller_count: z,
-            roller_length: length,
-            roller_mean_diameter: mean_d,
-            roller_half_angle: half,
-            roller_end_radius: end_radius,
-            pitch_diameter: dm,
-            cone_angle: cone,
-            cup_angle: cup,
+            z,
+            length,
+            mean_d,
+            half,
+            end_radius,
+            dm,
+            cone,
+            cup,
             flange_angle,
-            roller_material,
-            ring_material,
-            cage_material,
-            contact_law,
-            pocket_clearance: pocket,
-            guide_clearance: guide,
-            land_width,
-            land_radius,
-            cage_mass,
-            eta0,
-            oil_nu40: nu40,
-            oil_nu100: nu100,
-            oil_density,
-            oil_temperature,
-            alpha,
-            roughness,
-            oil_traction,
-            flange_roughness,
-            lubrication: f.model,
-            mu,
-            flange_mu0,
-            cage_slip_rate: slip,
-            crown_drop: crown,
-            clearance,
-            outer_lobes: rw.outer_lobes as u32,
-            outer_waveform: waveform,
-            slices: s.slices as usize,
-            tolerance,
-            speed,
-            fx,
-            fy,
-            fz,
-            xi,
-            zeta,
-            axial_displacement: ad,
-            displacement_preload: op.preload == PreloadFile::Displacement,
-            documented_defaults: notes,
+            crown,
         })
     }
 }
@@ -1169,6 +1279,32 @@ mod tests {
             let e = error_of(v);
             let want = path.join(".");
             assert!(e.field.starts_with(&want) || e.to_string().contains(&want), "{want}: {e}");
+        }
+    }
+
+    /// One run names every fault of a file, section by section (the geometry's first).
+    #[test]
+    fn every_fault_of_a_file_is_named_at_once() {
+        let mut v = default_json();
+        v["rollers"]["count"] = serde_json::json!(1);
+        v["lubricant"]["eta0_Pa_s"] = serde_json::json!(-1.0);
+        v["lubricant"]["alpha_per_Pa"] = serde_json::json!(1.0);
+        v["friction"]["mu"] = serde_json::json!(5.0);
+        v["solver"]["slices"] = serde_json::json!(1);
+        v["cage"]["mass_kg"] = serde_json::json!(0.0);
+        v["operating_point"]["xi_deg"] = serde_json::json!(9.0);
+        let e = error_of(v);
+        assert_eq!(e.field, "rollers.count", "{e}");
+        for field in [
+            "rollers.count",
+            "lubricant.eta0_Pa_s",
+            "lubricant.alpha_per_Pa",
+            "friction.mu",
+            "solver.slices",
+            "cage.mass_kg",
+            "operating_point.xi_deg",
+        ] {
+            assert!(e.to_string().contains(&format!("`{field}`")), "{field} not named: {e}");
         }
     }
 

@@ -477,6 +477,18 @@ pub mod defaults {
     }
     pub const OPERATING_POINT_NOTE: &str = "Default operating point: pure axial load with P = Y Fa = 0.1 C_r (L10 = 2150 million revolutions; a cylindrical bearing: radial load 0.1 C_r), at 1500 rpm or n d_m = 2.5e5 mm/min if lower.";
 
+    /// A cage that stands in where the geometry to size one by is itself at fault (the
+    /// bearing is refused; the cage's own checks still run).
+    pub fn placeholder_cage() -> CageFile {
+        CageFile {
+            pocket_clearance_mm: 0.0,
+            guide_clearance_mm: 0.0,
+            land_width_mm: 1.0,
+            land_radius_mm: 1.0,
+            mass_kg: 1.0,
+        }
+    }
+
     pub const CAGE_NOTE: &str = "Pressed-steel window cage: sheet 0.1 D_we thick, pocket clearance 0.04 D_we, guide clearance 0.005 D_pw, guiding land at D_pw/2 + 0.45 D_we and 0.22 L_we wide, mass from the sheet (docs/model.md, A bearing from its catalogue data).";
 
     pub const CONTACT_LAW_NOTE: &str =
