@@ -122,10 +122,17 @@ pub struct Parameters {
     /// Dynamic model: right-hand-side evaluations a doStep may spend per simulated second
     /// (`workBudget`; a step of length h gets `step_work_budget(h)`).
     pub work_budget: f64,
+    /// ISO 281 contamination factor e_C of the modified rating life (`contamination.eC`).
+    #[serde(default = "one")]
+    pub contamination_ec: f64,
 }
 
 fn yes() -> bool {
     true
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// The default `workBudget`: right-hand-side evaluations per simulated second.
@@ -260,6 +267,8 @@ impl Parameters {
             max_step: 1e-3,
             threads: 1,
             work_budget: DEFAULT_WORK_BUDGET,
+            // extreme cleanliness: the life the lubrication alone allows (ISO 281 Table 13)
+            contamination_ec: 1.0,
         }
     }
 
@@ -406,6 +415,12 @@ impl Parameters {
             return bad(
                 "workBudget",
                 format!("must be in [1e3, 1e12] evaluations per simulated second, got {}", self.work_budget),
+            );
+        }
+        if !(self.contamination_ec.is_finite() && (0.0..=1.0).contains(&self.contamination_ec)) {
+            return bad(
+                "contamination.eC",
+                format!("must be in [0, 1] (ISO 281's contamination factor), got {}", self.contamination_ec),
             );
         }
         Ok(())
@@ -672,6 +687,10 @@ pub struct Outputs {
     pub pressure_max: f64,
     /// Smallest raceway film ratio (at the most heavily loaded slices).
     pub film_ratio_raceway: f64,
+    /// ISO 281 modified rating life (h), its life modification factor and viscosity ratio.
+    pub life_l10m: f64,
+    pub life_a_iso: f64,
+    pub oil_kappa: f64,
     /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
     pub stiffness: [f64; 25],
     /// The oil's dynamic viscosity at the current oil temperature (Pa s).
@@ -737,6 +756,9 @@ impl Outputs {
             safety_s0,
             pressure_max,
             film_ratio_raceway,
+            life_l10m,
+            life_a_iso,
+            oil_kappa,
             stiffness,
             oil_viscosity,
             tilt_max,
@@ -792,6 +814,9 @@ impl Outputs {
         self.safety_s0.clone_from(safety_s0);
         self.pressure_max.clone_from(pressure_max);
         self.film_ratio_raceway.clone_from(film_ratio_raceway);
+        self.life_l10m.clone_from(life_l10m);
+        self.life_a_iso.clone_from(life_a_iso);
+        self.oil_kappa.clone_from(oil_kappa);
         self.stiffness.clone_from(stiffness);
         self.oil_viscosity.clone_from(oil_viscosity);
         self.tilt_max.clone_from(tilt_max);
@@ -887,6 +912,9 @@ impl Outputs {
             self.safety_s0,
             self.pressure_max,
             self.film_ratio_raceway,
+            self.life_l10m,
+            self.life_a_iso,
+            self.oil_kappa,
             self.oil_viscosity,
             self.tilt_max,
             self.tilt_mean,

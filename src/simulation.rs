@@ -456,9 +456,22 @@ impl Simulation {
                 report
             }
         };
-        st.outputs.oil_viscosity = match self.model.as_ref().expect("model built") {
-            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs.oil_viscosity(),
+        let qs = match self.model.as_ref().expect("model built") {
+            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs,
         };
+        st.outputs.oil_viscosity = qs.oil_viscosity();
+        // ISO 281's modified rating life: the oil's kinematic viscosity at its temperature
+        let nu = st.outputs.oil_viscosity / st.params.oil_grade().density(st.inputs.oil_temperature);
+        let o = &mut st.outputs;
+        let life = qs.rating().modified_life(
+            o.life_l10,
+            libm::hypot(o.reaction_fy, o.reaction_fz),
+            o.reaction_fx,
+            nu,
+            st.inputs.relative_speed(),
+            st.params.contamination_ec,
+        );
+        (o.life_l10m, o.life_a_iso, o.oil_kappa) = (life.l10m, life.a_iso, life.kappa);
         if !st.outputs.all_finite() {
             // Nothing that is not finite ever leaves the element: keep the last valid outputs.
             st.outputs.copy_from(&self.backup);
@@ -539,6 +552,7 @@ impl Simulation {
             var::CONE_MASS => p.cone_mass,
             var::MAX_STEP => p.max_step,
             var::WORK_BUDGET => p.work_budget,
+            var::CONTAMINATION_E_C => p.contamination_ec,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -576,6 +590,9 @@ impl Simulation {
             var::SAFETY_S0 => o.safety_s0,
             var::PRESSURE_MAX => o.pressure_max,
             var::FILM_RATIO_RACEWAY => o.film_ratio_raceway,
+            var::LIFE_L10M => o.life_l10m,
+            var::LIFE_A_ISO => o.life_a_iso,
+            var::OIL_KAPPA => o.oil_kappa,
             var::OIL_VISCOSITY => o.oil_viscosity,
             v @ var::STIFFNESS_1_1..=var::STIFFNESS_5_5 => o.stiffness[(v - var::STIFFNESS_1_1) as usize],
             var::TILT_MAX => o.tilt_max,
@@ -652,6 +669,7 @@ impl Simulation {
             var::CONE_MASS => &mut p.cone_mass,
             var::MAX_STEP => &mut p.max_step,
             var::WORK_BUDGET => &mut p.work_budget,
+            var::CONTAMINATION_E_C => &mut p.contamination_ec,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };

@@ -134,3 +134,42 @@ fn the_default_bearings_torque_is_within_30_percent_of_skf() {
         }
     }
 }
+
+/// ISO 281's modified rating life on the default bearing at the [W25] reference point
+/// (3500 rpm, Fa 30 kN): κ from the oil's kinematic viscosity at its temperature over ν1 at
+/// that speed and pitch diameter, a_ISO from κ and e_C C_u / P, L10m = a_ISO L10. A hotter oil
+/// lowers κ and the life; e_C = 0 leaves a_ISO at its floor 0.1.
+#[test]
+fn the_modified_rating_life_follows_iso_281() {
+    let b = Bearing::default_preset();
+    let run = |set: &[(u32, f64)]| {
+        let mut s = Simulation::new(b.clone());
+        for &(vr, v) in set {
+            s.set_real(vr, v).unwrap();
+        }
+        s.initialize(0.0).unwrap();
+        s.outputs().unwrap().clone()
+    };
+    let out = run(&[]);
+    // by hand: ν = η / ρ(T) at the reference temperature, ν1 = 4500 (n D_pw)^-0.5
+    let grade = trb::tribology::OilGrade::new(b.oil_nu40, b.oil_nu100, b.oil_density);
+    let nu_mm2s = b.eta0 / grade.density(b.oil_temperature) * 1e6;
+    let n_rpm = b.speed * 30.0 / std::f64::consts::PI;
+    let kappa = nu_mm2s / (4500.0 / (n_rpm * b.pitch_diameter * 1e3).sqrt());
+    let rating = trb::rating::BearingRating::new(&b, b.slices);
+    let p = trb::rating::equivalent_load(out.reaction_fy.hypot(out.reaction_fz), out.reaction_fx, b.cup_angle);
+    let cu = trb::rating::fatigue_load_limit(rating.c_0r, b.pitch_diameter);
+    let a_iso = trb::rating::life_modification_factor(kappa, cu / p);
+    eprintln!(
+        "TRB130x230, 3500 rpm, Fa 30 kN: L10 {:.0} h, L10r {:.0} h, L10m {:.0} h (a_ISO {:.3}, kappa {:.2}, C_u {:.0} N, P {:.0} N)",
+        out.life_l10, out.life_l10r, out.life_l10m, out.life_a_iso, out.oil_kappa, cu, p
+    );
+    assert!((out.oil_kappa / kappa - 1.0).abs() < 1e-12, "{} against {kappa}", out.oil_kappa);
+    assert!((out.life_a_iso / a_iso - 1.0).abs() < 1e-12, "{} against {a_iso}", out.life_a_iso);
+    assert!((out.life_l10m / (a_iso * out.life_l10) - 1.0).abs() < 1e-12);
+
+    let hot = run(&[(var::OIL_TEMPERATURE, b.oil_temperature + 40.0)]);
+    assert!(hot.oil_kappa < out.oil_kappa && hot.life_l10m < out.life_l10m, "{hot:?}");
+    let dirty = run(&[(var::CONTAMINATION_E_C, 0.0)]);
+    assert!((dirty.life_a_iso - 0.1).abs() < 1e-15 && (dirty.life_l10m / dirty.life_l10 - 0.1).abs() < 1e-12);
+}

@@ -196,8 +196,10 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
          <a href=\"#drivetrain\">drivetrain block</a>.",
         "Fatigue rating: <code>rating.C</code> (ISO 281 basic dynamic load rating from the geometry), \
          <code>life.L10</code> (ISO 281 basic rating life at the carried loads' equivalent load and the \
-         speed) and <code>life.L10r</code> (ISO/TS 16281 basic reference rating life from the model's own \
-         slice loads, so tilt, clearance, profile and diameter deviations count), in hours.",
+         speed), <code>life.L10r</code> (ISO/TS 16281 basic reference rating life from the model's own \
+         slice loads, so tilt, clearance, profile and diameter deviations count) and <code>life.L10m</code> \
+         (ISO 281 modified rating life a_ISO L10 from the oil's viscosity ratio <code>oil.kappa</code> and the \
+         contamination factor <code>contamination.eC</code>), in hours.",
         "Co-simulation semantics: sample and hold. <code>fmi2DoStep(t, h)</code> advances the cage and \
          the roller azimuths over <code>[t, t+h]</code> with the inputs held and solves the element at \
          <code>t+h</code>; outputs are algebraic in the inputs at fidelity 0, so reading an output after \
@@ -217,7 +219,7 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
          <code>xi</code>, <code>zeta</code> (the moments needed to hold them are the outputs \
          <code>reaction.My</code>, <code>reaction.Mz</code>), limited to \u{b1}0.5 deg.",
         "Wear, damage and surface temperature (flash temperature) are not computed; the lives are \
-         ISO 281 / ISO/TS 16281 ratings with a1 = a_ISO = 1 (no lubrication or contamination factor).",
+         ISO 281 / ISO/TS 16281 ratings with a1 = 1; a_ISO = 1 except in <code>life.L10m</code>.",
         "A cylindrical roller bearing carries no axial load in this model (<code>Fx</code> is ignored).",
         "The element has no continuous states exposed to the master; at fidelity 0 the only memory \
          between steps is the cage angle (roller azimuths) and the solver's warm start.",
@@ -484,6 +486,11 @@ fn write_drivetrain(h: &mut String) {
             "basic reference rating life L_10r",
         ),
         (
+            "life.L10m, life.aISO, oil.kappa",
+            "ISO 281 a_ISO L10 in hours, a1 = 1; e_C = contamination.eC",
+            "modified rating life L_10mh, a_ISO, kappa",
+        ),
+        (
             "frictionTorque, powerLoss",
             "torque between the rings (to drive the cone when the cup stands), dissipated power = torque x (speed - cupSpeed)",
             "frictional moment M, power loss",
@@ -549,6 +556,7 @@ fn write_tool_names(h: &mut String) {
         ("DynamicEquivalentLoad (ISO 281)", "P of life.L10", "not an output: P = rating.C / L^(3/10), L = life.L10 \u{d7} 3600 |speed \u{2212} cupSpeed| / (2\u{3c0} 10^6) million revolutions"),
         ("BasicRatingLifeTime (ISO 281)", "life.L10", "hours"),
         ("ISOTS162812008BasicReferenceRatingLifeTime", "life.L10r", "hours, a1 = a_ISO = 1"),
+        ("ModifiedRatingLife (ISO 281)", "life.L10m", "hours, a1 = 1"),
         ("FrictionalMoment", "frictionTorque", "N m, between the rings"),
         ("PowerLoss", "powerLoss", "W"),
     ] {

@@ -1840,6 +1840,11 @@ impl QuasiStatic {
         }
     }
 
+    /// The bearing's load ratings.
+    pub fn rating(&self) -> &crate::rating::BearingRating {
+        &self.rating
+    }
+
     /// The oil's dynamic viscosity at ambient pressure this model was built with (Pa s).
     pub fn oil_viscosity(&self) -> f64 {
         self.params.eta0
