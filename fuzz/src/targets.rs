@@ -196,19 +196,24 @@ fn pick<'a>(r: &mut Reader, from: &'a [u32]) -> &'a [u32] {
     &from[start..start + len]
 }
 
+/// The callbacks of an instance whose log goes to `sink`.
+fn callbacks(sink: &Sink) -> Fmi2CallbackFunctions {
+    Fmi2CallbackFunctions {
+        logger: Some(logger()),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: (sink as *const Sink).cast_mut().cast(),
+    }
+}
+
 /// Interpret `data` as a sequence of FMI calls on one instance (at most 48). Every call must
 /// return a status in 0..=3 (fmi2Fatal means a caught panic), and every value read must be
 /// finite whatever the status.
 pub fn fmi_calls(data: &[u8]) {
     let f = fixture();
     let sink = Box::<Sink>::default();
-    let cb = Fmi2CallbackFunctions {
-        logger: Some(logger()),
-        allocate_memory: None,
-        free_memory: None,
-        step_finished: None,
-        component_environment: (&*sink as *const Sink).cast_mut().cast(),
-    };
+    let cb = callbacks(&sink);
     let mut r = Reader::new(data);
     let logging_on = r.u8() & 1;
     let c = unsafe {
@@ -403,13 +408,7 @@ pub fn dynamic_jumps(data: &[u8]) {
     let c_r = trb::rating::BearingRating::new(&bearing, bearing.slices).c_r;
     let n_lim = trb::warnings::limiting_speed(&bearing);
     let sink = Box::<Sink>::default();
-    let cb = Fmi2CallbackFunctions {
-        logger: Some(logger()),
-        allocate_memory: None,
-        free_memory: None,
-        step_finished: None,
-        component_environment: (&*sink as *const Sink).cast_mut().cast(),
-    };
+    let cb = callbacks(&sink);
     let mut r = Reader::new(data);
     let logging_on = (r.u8() & 1) as c_int;
     let c = unsafe {
