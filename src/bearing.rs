@@ -464,15 +464,96 @@ impl Bearing {
     }
 
     /// Parse and validate a bearing JSON text.
+    ///
+    /// One run names every fault: a fault of the file's structure (an unknown field, a value
+    /// of the wrong type) is taken out of the text and the rest read again, and the values are
+    /// then checked section by section. Only a missing required field, or one whose removal
+    /// leaves it missing, ends the reading.
     pub fn from_json(text: &str) -> Result<Bearing, BearingError> {
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let file: BearingFile = serde_path_to_error::deserialize(de).map_err(|e| {
-            let path = e.path().to_string();
-            let inner = e.into_inner();
-            let field = if path == "." { String::new() } else { path };
-            err(&field, inner.to_string())
-        })?;
-        file.to_bearing()
+        let mut value: serde_json::Value = match serde_json::from_str(text) {
+            Ok(v) => v,
+            // not JSON (or a number beyond f64): where, by the file's fields
+            Err(_) => {
+                let de = &mut serde_json::Deserializer::from_str(text);
+                return match serde_path_to_error::deserialize::<_, BearingFile>(de) {
+                    Ok(file) => file.to_bearing(),
+                    Err(e) => {
+                        let field = e.path().to_string();
+                        Err(err(if field == "." { "" } else { &field }, e.into_inner().to_string()))
+                    }
+                };
+            }
+        };
+        let mut faults = Faults::default();
+        let mut removed: Vec<(Vec<String>, String)> = Vec::new();
+        // sections taken out whole: their other faults are not reported (they would be the
+        // section's absence)
+        let mut sections_out: Vec<String> = Vec::new();
+        for _ in 0..64 {
+            let e = match serde_path_to_error::deserialize::<_, BearingFile>(&value) {
+                Ok(file) => {
+                    match file.to_bearing_or_faults() {
+                        Ok(bearing) if faults.0.is_empty() => return Ok(bearing),
+                        Ok(_) => {}
+                        Err(more) => {
+                            let inside = |field: &str| sections_out.iter().any(|s| field == s || field.starts_with(&format!("{s}.")));
+                            faults.0.extend(more.0.into_iter().filter(|e| !inside(&e.field)));
+                        }
+                    }
+                    break;
+                }
+                Err(e) => e,
+            };
+            let mut path: Vec<String> = e
+                .path()
+                .iter()
+                .map(|s| match s {
+                    serde_path_to_error::Segment::Map { key } => key.clone(),
+                    serde_path_to_error::Segment::Seq { index } => index.to_string(),
+                    other => other.to_string(),
+                })
+                .collect();
+            let field = e.path().to_string();
+            let message = e.into_inner().to_string();
+            // A field this loop took out is now missing: its fault is already named; take its
+            // section out too (every section but the name and kind is optional) and go on.
+            if let Some(key) = quoted_after(&message, "missing field `") {
+                let ours = removed.iter().any(|(parent, k)| *parent == path && k == key);
+                if !ours {
+                    faults.push(err(if field == "." { "" } else { &field }, message));
+                }
+                let Some((section, parent)) = path.split_last() else {
+                    break;
+                };
+                if !ours
+                    || value_at(&mut value, parent)
+                        .and_then(|v| v.as_object_mut())
+                        .and_then(|o| o.remove(section))
+                        .is_none()
+                {
+                    break;
+                }
+                sections_out.push(path.join("."));
+                continue;
+            }
+            faults.push(err(if field == "." { "" } else { &field }, message.clone()));
+            if let Some(key) = quoted_after(&message, "unknown field `") {
+                if path.last().map(String::as_str) != Some(key) {
+                    path.push(key.to_string());
+                }
+            }
+            let Some((key, parent)) = path.split_last() else {
+                break;
+            };
+            let taken = value_at(&mut value, parent)
+                .and_then(|v| v.as_object_mut())
+                .and_then(|object| object.remove(key));
+            if taken.is_none() {
+                break;
+            }
+            removed.push((parent.to_vec(), key.clone()));
+        }
+        Err(faults.into_result().expect_err("a file that reads and converts returns above"))
     }
 
     /// Mean roller radius.
@@ -538,6 +619,21 @@ const MM: f64 = 1e-3;
 pub const OIL_T_MIN_C: f64 = -40.0;
 pub const OIL_T_MAX_C: f64 = 200.0;
 const UM: f64 = 1e-6;
+
+/// The text between `prefix` and the next backquote in `message`.
+fn quoted_after<'a>(message: &'a str, prefix: &str) -> Option<&'a str> {
+    let rest = &message[message.find(prefix)? + prefix.len()..];
+    Some(&rest[..rest.find('`')?])
+}
+
+/// The JSON value at `path` (object keys, array indices).
+fn value_at<'a>(v: &'a mut serde_json::Value, path: &[String]) -> Option<&'a mut serde_json::Value> {
+    path.iter().try_fold(v, |v, key| match v {
+        serde_json::Value::Object(m) => m.get_mut(key),
+        serde_json::Value::Array(a) => a.get_mut(key.parse::<usize>().ok()?),
+        _ => None,
+    })
+}
 
 /// A required field, or the error naming it.
 fn need<'a, T>(v: &'a Option<T>, field: &str) -> Result<&'a T, BearingError> {
@@ -618,8 +714,13 @@ impl BearingFile {
     /// Validate and convert to SI: a `catalogue` block is estimated first
     /// ([`Catalogue::estimate`]); absent sections take their documented defaults.
     pub fn to_bearing(&self) -> Result<Bearing, BearingError> {
+        self.to_bearing_or_faults().map_err(|f| f.into_result().expect_err("faults"))
+    }
+
+    /// [`BearingFile::to_bearing`] with its faults one by one.
+    fn to_bearing_or_faults(&self) -> Result<Bearing, Faults> {
         match &self.catalogue {
-            Some(c) => self.estimated(c)?.validate(),
+            Some(c) => self.estimated(c).map_err(|e| Faults(vec![e]))?.validate(),
             None => self.validate(),
         }
     }
@@ -701,7 +802,7 @@ impl BearingFile {
     /// Validate a file that gives its internal geometry and convert it to SI. Every section is
     /// checked, so one run names every fault (the geometry's first: its checks build on each
     /// other).
-    fn validate(&self) -> Result<Bearing, BearingError> {
+    fn validate(&self) -> Result<Bearing, Faults> {
         let mut faults = Faults::default();
         if self.name.trim().is_empty() {
             faults.push(err("name", "must not be empty"));
@@ -852,7 +953,9 @@ impl BearingFile {
             .num(in_range("operating_point.zeta_deg", op.zeta_deg, -5.0, 5.0))
             .to_radians();
         let ad = faults.num(finite("operating_point.axial_displacement_um", op.axial_displacement_um)) * UM;
-        faults.into_result()?;
+        if !faults.0.is_empty() {
+            return Err(faults);
+        }
         let g = g.expect("no fault: the geometry is valid");
         let (roller_material, ring_material, cage_material) = (
             roller_material.expect("no fault"),
@@ -1291,6 +1394,30 @@ mod tests {
         ] {
             assert!(e.to_string().contains(&format!("`{field}`")), "{field} not named: {e}");
         }
+    }
+
+    /// Faults of the file's structure too: unknown fields and values of the wrong type in
+    /// several sections, with a value fault elsewhere, all in one message.
+    #[test]
+    fn structural_faults_are_named_at_once() {
+        let mut v = default_json();
+        v["lubricant"]["colour"] = serde_json::json!("amber");
+        v["lubricant"]["eta0_Pa_s"] = serde_json::json!("thick");
+        v["solver"]["method"] = serde_json::json!("newton");
+        v["rollers"]["count"] = serde_json::json!("seventeen");
+        v["friction"]["mu"] = serde_json::json!(5.0);
+        let e = error_of(v);
+        for field in [
+            "lubricant.colour",
+            "lubricant.eta0_Pa_s",
+            "solver.method",
+            "rollers.count",
+            "friction.mu",
+        ] {
+            assert!(e.to_string().contains(&format!("`{field}`")), "{field} not named: {e}");
+        }
+        // the sections taken out for their faults are not reported missing
+        assert!(!e.to_string().contains("missing field `rollers`"), "{e}");
     }
 
     #[test]
