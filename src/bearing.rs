@@ -6,7 +6,9 @@
 //! preset's `documented_defaults` and in the FMU documentation.
 //!
 //! Errors name the offending field by its path in the file (for example
-//! `rollers.length_mm: must be a finite number > 0, got -3`).
+//! `rollers.length_mm: must be a finite number > 0, got -3`), every fault of a file in one
+//! message. A file may give catalogue data instead of its internal geometry (`catalogue`), and
+//! may leave out every section with a documented default (`catalogue::defaults`).
 
 use crate::catalogue::{defaults, Catalogue};
 use schemars::JsonSchema;
