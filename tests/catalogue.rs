@@ -365,3 +365,30 @@ fn the_example_bearings_are_what_the_estimate_makes() {
         Bearing::from_json(&got).unwrap();
     }
 }
+
+/// The estimated 30206 in the dynamic model under combined load (its operating point's axial
+/// load and Fy 2 kN, 1500 rpm, 5 ms from the run-in start): the bearing carries the loads put
+/// on it and its power loss is its friction torque times the speed.
+#[test]
+fn an_estimated_bearing_runs_in_the_dynamic_model() {
+    use trb::variables as var;
+    let cat = catalogue(30.0, 62.0, 17.25, 43_000.0, 0.37);
+    let file = cat.estimate().unwrap().bearing_file(&cat, "30206");
+    let b = Bearing::from_json(&serde_json::to_string(&file).unwrap()).unwrap();
+    let mut s = Simulation::new(b.clone());
+    s.set_integer(var::FIDELITY, 1).unwrap();
+    s.set_real(var::FY, 2000.0).unwrap();
+    s.initialize(0.0).unwrap();
+    for k in 0..5 {
+        s.do_step(k as f64 * 1e-3, 1e-3).unwrap();
+    }
+    let out = s.outputs().unwrap().clone();
+    eprintln!(
+        "30206 estimated, dynamic: reaction Fx {:.1} N (Fx {}), Fy {:.1} N (2000), torque {:.4} N m, power {:.2} W",
+        out.reaction_fx, b.fx, out.reaction_fy, out.friction_torque, out.power_loss
+    );
+    assert!((out.reaction_fx / b.fx - 1.0).abs() < 1e-3, "{}", out.reaction_fx);
+    assert!((out.reaction_fy / 2000.0 - 1.0).abs() < 1e-3, "{}", out.reaction_fy);
+    assert!(out.friction_torque > 0.0);
+    assert!((out.power_loss / (out.friction_torque * b.speed) - 1.0).abs() < 0.02, "{out:?}");
+}
