@@ -49,12 +49,13 @@ const CASES: &[&str] = &[
     "preload_fr45kN_xi0.003",
 ];
 
-/// A variant of a shipped case: another `traction` law, another run length. The scenario
-/// file's own settings where `None`.
+/// A variant of a shipped case: another `traction` law, another run length, another contact
+/// law of the bearing. The scenario file's own settings where `None`.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Variant {
     pub traction: Option<i32>,
     pub stop_time: Option<f64>,
+    pub contact_law: Option<trb::bearing::ContactLaw>,
 }
 
 /// The folder of the [W25] scenarios.
@@ -122,6 +123,9 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
     }
     if let Some(t) = variant.stop_time {
         scenario.set_stop_time(t).map_err(invalid)?;
+    }
+    if let Some(law) = variant.contact_law {
+        scenario.bearing.bearing.contact_law = law;
     }
     let started = Instant::now();
     let mut sim = prepare(&scenario)?;
