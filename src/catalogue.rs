@@ -23,8 +23,10 @@
 //!    not leave that bar.
 //! 5. Roller effective length L_we: ISO 281's rating solved for it,
 //!    C_r = b_m f_c (L_we cos α)^(7/9) Z^(3/4) D_we^(29/27), so that the geometry's C_r is the
-//!    catalogue's (to rounding). A length whose roller does not fit the bearing width T refuses
-//!    C_r: no roller set of this envelope reaches it.
+//!    catalogue's (to rounding). A length whose roller does not fit the bearing width T, or
+//!    reaches beyond the ring section, refuses C_r: no roller set of this envelope reaches it;
+//!    so does a length under 0.8 D_we (a C_r below what the envelope's rollers carry), and an
+//!    envelope with no room for a roller that long refuses T.
 //! 6. One apex (the rollers roll without sliding along the line): the roller's half-cone angle
 //!    a_h from tan a_h = (D_we / 2) sin a_r / (D_pw / 2) with the roller axis angle
 //!    a_r = α − a_h, and the cone angle a_r − a_h.
@@ -61,6 +63,10 @@ use std::fmt;
 pub const ROLLER_DIAMETER_OVER_SECTION: f64 = 0.235;
 /// Smallest cage bar width at the pitch circle over the roller diameter (rule 4).
 pub const CAGE_BAR_OVER_ROLLER: f64 = 0.13;
+/// Shortest roller the estimate makes, over its diameter (rule 5): a tapered roller shorter
+/// than about its diameter tips in its pocket and skews freely; catalogue bearings' rollers
+/// are 1.2–2.5 diameters long ([L22]'s 32008: 2.1, [D19]'s 32018 X: 1.7).
+pub const MIN_LENGTH_OVER_DIAMETER: f64 = 0.8;
 /// Roller end sphere radius over the roller's apex distance (rule 7).
 pub const END_RADIUS_OVER_APEX: f64 = 0.9;
 /// Rib contact depth below the roller axis over the large-end radius (rule 8).
@@ -291,23 +297,56 @@ impl Catalogue {
         }
         let axis = alpha - half;
         let extent = length * libm::cos(axis) + dw * libm::sin(axis);
-        if extent > self.t {
-            let reachable = {
-                // the longest roller of this section that fits the width
-                let l_max = (self.t - dw * libm::sin(axis)) / libm::cos(axis);
-                basic_dynamic_load_rating(&RatingGeometry {
-                    z,
-                    d_we: dw * 1e-3,
-                    l_we: l_max.max(0.0) * 1e-3,
-                    d_pw: dpw * 1e-3,
-                    alpha,
-                })
+        // The roller must fit the envelope: axially the width T, radially the ring section
+        // about the pitch circle (the reader's checks, `bearing.rs`), with 0.1 % to spare.
+        let l_max_axial = (self.t - dw * libm::sin(axis)) / libm::cos(axis);
+        let l_max_radial = 2.0 * (0.999 * 0.25 * section - 0.5 * dw * libm::cos(axis)) / libm::sin(axis);
+        let l_max = l_max_axial.min(l_max_radial);
+        let l_min = MIN_LENGTH_OVER_DIAMETER * dw;
+        let rating_at = |l: f64| {
+            basic_dynamic_load_rating(&RatingGeometry {
+                z,
+                d_we: dw * 1e-3,
+                l_we: l.max(0.0) * 1e-3,
+                d_pw: dpw * 1e-3,
+                alpha,
+            })
+        };
+        if l_max < l_min {
+            return Err(CatalogueErrors(vec![CatalogueError {
+                field: "T",
+                message: format!(
+                    "a {} x {} x {} mm envelope leaves rollers of {dw:.2} mm diameter at most {:.2} mm of length, less than {MIN_LENGTH_OVER_DIAMETER} of their diameter: the width or the section does not make a tapered roller bearing",
+                    self.d, self.outside_d, self.t, l_max.max(0.0)
+                ),
+            }]));
+        }
+        if length < l_min {
+            return Err(CatalogueErrors(vec![CatalogueError {
+                field: "Cr",
+                message: format!(
+                    "C_r = {} N would make {z} rollers of {dw:.2} mm diameter only {length:.2} mm long, less than {MIN_LENGTH_OVER_DIAMETER} of their diameter; a roller set of this envelope carries at least about {:.0} N",
+                    self.c_r,
+                    rating_at(l_min)
+                ),
+            }]));
+        }
+        if length > l_max {
+            let reachable = rating_at(l_max);
+            let limit = if l_max_axial <= l_max_radial {
+                format!("spanning {extent:.2} mm of the {} mm width", self.t)
+            } else {
+                format!(
+                    "reaching {:.2} mm from the pitch circle in a section of {:.2} mm each side",
+                    0.5 * dw * libm::cos(axis) + 0.5 * length * libm::sin(axis),
+                    0.25 * section
+                )
             };
             return Err(CatalogueErrors(vec![CatalogueError {
                 field: "Cr",
                 message: format!(
-                    "no roller set in a {} x {} x {} mm envelope reaches C_r = {} N: {z} rollers of {dw:.2} mm would need to be {length:.2} mm long, spanning {extent:.2} mm of the {} mm width (about {reachable:.0} N at most)",
-                    self.d, self.outside_d, self.t, self.c_r, self.t
+                    "no roller set in a {} x {} x {} mm envelope reaches C_r = {} N: {z} rollers of {dw:.2} mm would need to be {length:.2} mm long, {limit} (about {reachable:.0} N at most)",
+                    self.d, self.outside_d, self.t, self.c_r
                 ),
             }]));
         }
@@ -375,11 +414,23 @@ pub fn cage(z: usize, dw: f64, length: f64, dpw: f64) -> CageFile {
     let windows = 0.95 * z as f64 * length * dw;
     let volume_mm3 = sheet * (band - windows).max(0.0);
     CageFile {
-        pocket_clearance_mm: round_to(0.04 * dw, 0.01),
-        guide_clearance_mm: round_to(0.005 * dpw, 0.01),
-        land_width_mm: round_to(0.22 * length, 0.1),
-        land_radius_mm: round_to(0.5 * dpw + 0.45 * dw, 0.1),
-        mass_kg: round_to(volume_mm3 * 1e-9 * STEEL_DENSITY, 0.001).max(0.001),
+        pocket_clearance_mm: significant(0.04 * dw),
+        guide_clearance_mm: significant(0.005 * dpw),
+        land_width_mm: significant(0.22 * length),
+        land_radius_mm: significant(0.5 * dpw + 0.45 * dw),
+        mass_kg: significant(volume_mm3 * 1e-9 * STEEL_DENSITY),
+    }
+}
+
+/// `v` (> 0) to three significant digits, the double nearest that decimal.
+fn significant(v: f64) -> f64 {
+    let digits = 2 - libm::floor(libm::log10(v)) as i32;
+    if digits > 0 {
+        let scale = 10f64.powi(digits);
+        (v * scale).round() / scale
+    } else {
+        let scale = 10f64.powi(-digits);
+        (v / scale).round() * scale
     }
 }
 
