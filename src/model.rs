@@ -685,8 +685,10 @@ pub struct Outputs {
     pub rating_c0: f64,
     pub safety_s0: f64,
     pub pressure_max: f64,
-    /// Smallest raceway film ratio (at the most heavily loaded slices).
+    /// Smallest raceway film ratio (at the most heavily loaded slices) and the rib's (at the
+    /// most heavily loaded rib contact).
     pub film_ratio_raceway: f64,
+    pub film_ratio_flange: f64,
     /// ISO 281 modified rating life (h), its life modification factor and viscosity ratio.
     pub life_l10m: f64,
     pub life_a_iso: f64,
@@ -756,6 +758,7 @@ impl Outputs {
             safety_s0,
             pressure_max,
             film_ratio_raceway,
+            film_ratio_flange,
             life_l10m,
             life_a_iso,
             oil_kappa,
@@ -814,6 +817,7 @@ impl Outputs {
         self.safety_s0.clone_from(safety_s0);
         self.pressure_max.clone_from(pressure_max);
         self.film_ratio_raceway.clone_from(film_ratio_raceway);
+        self.film_ratio_flange.clone_from(film_ratio_flange);
         self.life_l10m.clone_from(life_l10m);
         self.life_a_iso.clone_from(life_a_iso);
         self.oil_kappa.clone_from(oil_kappa);
@@ -912,6 +916,7 @@ impl Outputs {
             self.safety_s0,
             self.pressure_max,
             self.film_ratio_raceway,
+            self.film_ratio_flange,
             self.life_l10m,
             self.life_a_iso,
             self.oil_kappa,

@@ -460,6 +460,7 @@ impl Simulation {
             Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs,
         };
         st.outputs.oil_viscosity = qs.oil_viscosity();
+        st.outputs.film_ratio_flange = qs.flange_film_ratio_output(&st.outputs.qf, &st.inputs);
         // ISO 281's modified rating life: the oil's kinematic viscosity at its temperature
         let nu = st.outputs.oil_viscosity / st.params.oil_grade().density(st.inputs.oil_temperature);
         let o = &mut st.outputs;
@@ -590,6 +591,7 @@ impl Simulation {
             var::SAFETY_S0 => o.safety_s0,
             var::PRESSURE_MAX => o.pressure_max,
             var::FILM_RATIO_RACEWAY => o.film_ratio_raceway,
+            var::FILM_RATIO_FLANGE => o.film_ratio_flange,
             var::LIFE_L10M => o.life_l10m,
             var::LIFE_A_ISO => o.life_a_iso,
             var::OIL_KAPPA => o.oil_kappa,

@@ -173,3 +173,38 @@ fn the_modified_rating_life_follows_iso_281() {
     let dirty = run(&[(var::CONTAMINATION_E_C, 0.0)]);
     assert!((dirty.life_a_iso - 0.1).abs() < 1e-15 && (dirty.life_l10m / dirty.life_l10 - 0.1).abs() < 1e-12);
 }
+
+/// `filmRatio.flange`: the rib's film ratio at the most heavily loaded roller end. On the
+/// default bearing at the [W25] point it is a full film that thickens with speed and thins
+/// with a hotter oil; at standstill it is 0, dry 0, and a bearing without a loaded rib (the
+/// cylindrical preset) reports the cap 1e9.
+#[test]
+fn the_rib_film_ratio_follows_speed_and_temperature() {
+    let run = |name: &str, set: &[(u32, f64)], dry: bool| {
+        let mut s = Simulation::new(Bearing::preset(name).unwrap());
+        if dry {
+            s.set_integer(var::LUBRICATION, 1).unwrap();
+        }
+        for &(vr, v) in set {
+            s.set_real(vr, v).unwrap();
+        }
+        s.initialize(0.0).unwrap();
+        s.outputs().unwrap().clone()
+    };
+    let rpm = std::f64::consts::PI / 30.0;
+    let b = Bearing::default_preset();
+    let at = |n: f64, dt: f64| {
+        run(
+            "TRB130x230",
+            &[(var::SPEED, n * rpm), (var::OIL_TEMPERATURE, b.oil_temperature + dt)],
+            false,
+        )
+        .film_ratio_flange
+    };
+    let (slow, fast, hot) = (at(500.0, 0.0), at(3500.0, 0.0), at(3500.0, 40.0));
+    eprintln!("TRB130x230, Fa 30 kN: rib film ratio {slow:.3} at 500 rpm, {fast:.3} at 3500 rpm, {hot:.3} 40 K hotter");
+    assert!(slow > 0.0 && slow < fast && hot < fast && fast < 1e9, "{slow} {fast} {hot}");
+    assert_eq!(at(0.0, 0.0), 0.0);
+    assert_eq!(run("TRB130x230", &[], true).film_ratio_flange, 0.0);
+    assert_eq!(run("CRB-TRILOBE", &[], false).film_ratio_flange, 1e9);
+}

@@ -289,6 +289,36 @@ impl FrictionModel {
 
     /// Whether [`FrictionModel::evaluate`] needs the converged slice loads (`traction` = 0
     /// with EHL: the traction law is evaluated slice by slice).
+    /// The film ratio Λ = h / σ of the rib contact of geometry `g` carrying load `qf` at cone
+    /// speed `speed` relative to the cup, as the rib's friction law takes it: with `traction`
+    /// 0 the film reduced by inlet shear heating over the roller end / rib roughness, with 1
+    /// the isothermal film over the raceway roughness ([L22]'s rib law). Infinite without a
+    /// loaded rib or roughness.
+    pub fn flange_film_ratio(&self, g: &crate::geometry::Geometry, qf: f64, speed: f64) -> f64 {
+        let Some(f) = &g.flange else {
+            return f64::INFINITY;
+        };
+        if !(qf > 0.0) {
+            return f64::INFINITY;
+        }
+        let kin = self.flange;
+        let u_e = speed.abs() * kin.entrain;
+        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
+        match self.traction {
+            tr::TractionLaw::ThermalEyring => {
+                let (_, _, p_h) = f.hertz.ellipse(qf);
+                self.lubricant.rib_film_ratio(speed.abs() * kin.slide.abs(), u_e, h, p_h)
+            }
+            tr::TractionLaw::NewtonianEyring => {
+                if self.sigma > 0.0 {
+                    h / self.sigma
+                } else {
+                    f64::INFINITY
+                }
+            }
+        }
+    }
+
     /// The film ratio Λ = h / σ of the raceway slice `k` of `line` (with its `weights`)
     /// carrying load `q` at cone speed `speed` relative to the cup: Hamrock's central film
     /// reduced by inlet shear heating, as the traction law takes it, over the composite

@@ -1794,6 +1794,23 @@ impl QuasiStatic {
         }
     }
 
+    /// The rib's film ratio as the output `filmRatio.flange` reports it, at the most heavily
+    /// loaded rib contact of `flange_loads` (one per roller): the film thins with load.
+    /// Finite (at most [`FILM_RATIO_CAP`], which stands for no loaded rib), 0 for dry
+    /// contacts.
+    pub fn flange_film_ratio_output(&self, flange_loads: &[f64], inputs: &Inputs) -> f64 {
+        if self.params.lubrication != Lubrication::Ehl {
+            return 0.0;
+        }
+        let qf = flange_loads.iter().cloned().fold(0.0, f64::max);
+        let r = self.friction.flange_film_ratio(&self.geometry, qf, inputs.relative_speed());
+        if r.is_nan() {
+            0.0
+        } else {
+            r.min(FILM_RATIO_CAP)
+        }
+    }
+
     /// The smallest film ratio Λ = h / σ of the raceway contacts, taken at the most heavily
     /// loaded slice of the cone and of the cup in `slice_loads` (per roller the cone's slices
     /// then the cup's): the film thins with load, so that is where the asperities meet first.

@@ -152,6 +152,19 @@ impl Lubricant {
         self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
     }
 
+    /// The rib's film ratio Λ = h / σ_rib as [`Lubricant::rib_force`] takes it: the isothermal
+    /// point-contact film `h_iso` reduced by inlet shear heating, over the roller end / rib
+    /// composite roughness (infinite without roughness).
+    pub fn rib_film_ratio(&self, v_s: f64, u_e: f64, h_iso: f64, p_h: f64) -> f64 {
+        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 2.0 };
+        let h = h_iso * thermal_reduction(self.inlet_heating * u_e * u_e, p_h / self.e_prime, slide_roll);
+        if self.rib_sigma > 0.0 {
+            h / self.rib_sigma
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
     /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
     #[allow(clippy::too_many_arguments)]
