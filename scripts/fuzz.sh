@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzing of the bearing element (issue 6): the bearing JSON parser and random FMI call
+# Fuzzing of the bearing element: the bearing JSON parser and random FMI call
 # sequences (fuzz/src/targets.rs).
 #
 #   scripts/fuzz.sh [SECONDS]               stable seeded driver, SECONDS per target (default 10)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Memory check of the packaged FMU (issue 6): a C driver (scripts/leaks_driver.c) loads
+# Memory check of the packaged FMU: a C driver (scripts/leaks_driver.c) loads
 # binaries/linux64/TaperedRollerBearing.so of target/fmu/TaperedRollerBearing.fmu with dlopen
 # and runs ITERATIONS instantiate ... free life cycles (with FMU states, error paths and
 # refused instantiations) under valgrind; any definitely or indirectly lost byte, or any

@@ -101,7 +101,7 @@ cargo run --release --quiet -- fmu || fail "cargo run --release -- fmu"
 [ -f target/fmu/TaperedRollerBearing.fmu ] || fail "target/fmu/TaperedRollerBearing.fmu was not written"
 end "cargo run --release -- fmu"
 
-# --- 3b. Robustness: leak check of the packaged FMU, bounded fuzzing (issue 6) ---------------------
+# --- 3b. Robustness: leak check of the packaged FMU, bounded fuzzing ---------------------
 begin "leak check (valgrind)"
 ./scripts/leaks.sh 20 || fail "scripts/leaks.sh"
 end "leak check (valgrind)"
@@ -110,7 +110,7 @@ begin "fuzz (stable driver, 3 x 10 s)"
 ./scripts/fuzz.sh 10 || fail "scripts/fuzz.sh (crash input in fuzz/artifacts/)"
 end "fuzz (stable driver)"
 
-# --- 3c. The portable FMU: linux64 for glibc >= 2.17 and win64 (issue 15) -------------------------
+# --- 3c. The portable FMU: linux64 for glibc >= 2.17 and win64 -------------------------
 # Tools by scripts/cross-setup.sh (PyPI pins into .venv-cross; Debian packages when root). A
 # tool that cannot be installed here skips the build and its tests, saying which; the rest runs.
 PORTABLE_FMU="target/fmu-portable/TaperedRollerBearing.fmu"
