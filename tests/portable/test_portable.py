@@ -244,7 +244,18 @@ def wine_driver(extracted) -> dict:
         DISPLAY="",
     )
     start = time.monotonic()
-    subprocess.run([wine, "wineboot", "--init"], env=env, capture_output=True, timeout=600)
+    kernel32 = WORK / "wineprefix" / "drive_c" / "windows" / "system32" / "kernel32.dll"
+    # wineboot can return before the prefix holds its system DLLs (seen once in CI, right
+    # after another prefix's wineserver had exited): then stop this prefix's wineserver and
+    # build the prefix again, once.
+    for attempt in range(2):
+        boot = subprocess.run([wine, "wineboot", "--init"], env=env, capture_output=True, text=True, timeout=600)
+        if kernel32.exists():
+            break
+        wineserver = shutil.which("wineserver") or "/usr/lib/wine/wineserver"
+        subprocess.run([wineserver, "-k"], env=env, capture_output=True, timeout=60)
+        shutil.rmtree(WORK / "wineprefix", ignore_errors=True)
+    assert kernel32.exists(), f"wineboot did not create the prefix (exit {boot.returncode}):\n{boot.stderr}"
     print(f"wine prefix created in {time.monotonic() - start:.1f} s ({wine})")
     return dict(wine=wine, dir=d, env=env)
 
