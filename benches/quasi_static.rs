@@ -44,7 +44,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("TRB130x230_combined_Fy10kN_xi0.004deg_20slices", |b| b.iter(&mut f));
     let mut f = stepping("32018X", &[]);
     g.bench_function("32018X_D19_radial35kN_axial12970N_20slices", |b| b.iter(&mut f));
-    // issue 13: the combined-load and dry cases of the other presets (tests/qs_speed.rs)
+    // the combined-load and dry cases of the other presets (tests/qs_speed.rs)
     let mut f = stepping("TRB130x230", &[(var::FY, 10_000.0)]);
     g.bench_function("TRB130x230_combined_Fy10kN_20slices", |b| b.iter(&mut f));
     let mut f = stepping_int("TRB130x230", &[(var::FY, 10_000.0)], var::LUBRICATION, 1);

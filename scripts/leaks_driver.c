@@ -1,4 +1,4 @@
-/* Leak check driver for the TaperedRollerBearing FMU (issue 6, scripts/leaks.sh).
+/* Leak check driver for the TaperedRollerBearing FMU (scripts/leaks.sh).
  *
  *   leaks_driver BINARY.so GUID RESOURCE_URI ITERATIONS
  *
