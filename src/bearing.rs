@@ -479,10 +479,7 @@ impl Bearing {
                 let de = &mut serde_json::Deserializer::from_str(text);
                 return match serde_path_to_error::deserialize::<_, BearingFile>(de) {
                     Ok(file) => file.to_bearing(),
-                    Err(e) => {
-                        let field = e.path().to_string();
-                        Err(err(if field == "." { "" } else { &field }, e.into_inner().to_string()))
-                    }
+                    Err(e) => Err(fault_of(e)),
                 };
             }
         };
@@ -515,14 +512,14 @@ impl Bearing {
                     other => other.to_string(),
                 })
                 .collect();
-            let field = e.path().to_string();
-            let message = e.into_inner().to_string();
+            let fault = fault_of(e);
+            let message = fault.message.clone();
             // A field this loop took out is now missing: its fault is already named; take its
             // section out too (every section but the name and kind is optional) and go on.
             if let Some(key) = quoted_after(&message, "missing field `") {
                 let ours = removed.iter().any(|(parent, k)| *parent == path && k == key);
                 if !ours {
-                    faults.push(err(if field == "." { "" } else { &field }, message));
+                    faults.push(fault);
                 }
                 let Some((section, parent)) = path.split_last() else {
                     break;
@@ -538,7 +535,7 @@ impl Bearing {
                 sections_out.push(path.join("."));
                 continue;
             }
-            faults.push(err(if field == "." { "" } else { &field }, message.clone()));
+            faults.push(fault);
             if let Some(key) = quoted_after(&message, "unknown field `") {
                 if path.last().map(String::as_str) != Some(key) {
                     path.push(key.to_string());
@@ -621,6 +618,12 @@ const MM: f64 = 1e-3;
 pub const OIL_T_MIN_C: f64 = -40.0;
 pub const OIL_T_MAX_C: f64 = 200.0;
 const UM: f64 = 1e-6;
+
+/// A deserialiser's error as a fault at its path (the file's root names no field).
+fn fault_of<E: fmt::Display>(e: serde_path_to_error::Error<E>) -> BearingError {
+    let field = e.path().to_string();
+    err(if field == "." { "" } else { &field }, e.into_inner().to_string())
+}
 
 /// The text between `prefix` and the next backquote in `message`.
 fn quoted_after<'a>(message: &'a str, prefix: &str) -> Option<&'a str> {

@@ -55,7 +55,7 @@ use crate::bearing::{
     BearingFile, CageFile, ContactLaw, EnvelopeFile, FlangeFile, FrictionFile, Kind, LubricantFile, LubricationModel, MaterialFile,
     MaterialsFile, OperatingPointFile, PreloadFile, RacewayFile, RollersFile, SolverFile,
 };
-use crate::rating::{basic_dynamic_load_rating, basic_static_load_rating, f_c, RatingGeometry};
+use crate::rating::{basic_dynamic_load_rating, basic_static_load_rating, roller_length_for_rating, RatingGeometry};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -283,13 +283,15 @@ impl Catalogue {
             }]));
         }
         // rule 5: ISO 281's C_r solved for the effective length
-        let gamma = dw * libm::cos(alpha) / dpw;
-        let bm = 1.1;
-        let l_cos = libm::pow(
-            self.c_r / (bm * f_c(gamma) * libm::pow(z as f64, 0.75) * libm::pow(dw, 29.0 / 27.0)),
-            9.0 / 7.0,
-        );
-        let length = l_cos / libm::cos(alpha);
+        let rating_geometry = |l: f64| RatingGeometry {
+            z,
+            d_we: dw * 1e-3,
+            l_we: l.max(0.0) * 1e-3,
+            d_pw: dpw * 1e-3,
+            alpha,
+        };
+        let rating_at = |l: f64| basic_dynamic_load_rating(&rating_geometry(l));
+        let length = roller_length_for_rating(self.c_r, &rating_geometry(0.0)) * 1e3;
         // rule 6: one apex
         let mut half = 0.0;
         for _ in 0..60 {
@@ -303,15 +305,6 @@ impl Catalogue {
         let l_max_radial = 2.0 * (0.999 * 0.25 * section - 0.5 * dw * libm::cos(axis)) / libm::sin(axis);
         let l_max = l_max_axial.min(l_max_radial);
         let l_min = MIN_LENGTH_OVER_DIAMETER * dw;
-        let rating_at = |l: f64| {
-            basic_dynamic_load_rating(&RatingGeometry {
-                z,
-                d_we: dw * 1e-3,
-                l_we: l.max(0.0) * 1e-3,
-                d_pw: dpw * 1e-3,
-                alpha,
-            })
-        };
         if l_max < l_min {
             return Err(CatalogueErrors(vec![CatalogueError {
                 field: "T",
@@ -360,13 +353,7 @@ impl Catalogue {
         let crown_um = crown_drop_mm(dw, length, dpw, alpha - 2.0 * half, half) * 1e3;
         // rule 10: the cage
         let cage = cage(z, dw, length, dpw);
-        let geometry = RatingGeometry {
-            z,
-            d_we: dw * 1e-3,
-            l_we: length * 1e-3,
-            d_pw: dpw * 1e-3,
-            alpha,
-        };
+        let geometry = rating_geometry(length);
         Ok(Estimate {
             z,
             roller_mean_diameter_mm: dw,
@@ -399,7 +386,7 @@ fn crown_drop_mm(dw: f64, length: f64, dpw: f64, cone_angle: f64, half: f64) -> 
     let r_cone = (0.5 * dpw - 0.5 * dw * libm::cos(axis)) / libm::cos(cone_angle);
     let r_bar = r_roller * r_cone / (r_roller + r_cone);
     // Hertz line contact p0 = sqrt(w E* / (π R)): w = π R p0² / E* (N/mm with MPa, mm)
-    let e_star = STEEL_E_GPA * 1e3 / (2.0 * (1.0 - STEEL_NU * STEEL_NU));
+    let e_star = 0.5 * crate::contact::effective_modulus(STEEL_E_GPA * 1e3, STEEL_NU, STEEL_E_GPA * 1e3, STEEL_NU);
     let p0 = CROWN_DESIGN_PRESSURE * 1e-6;
     let q = std::f64::consts::PI * r_bar * p0 * p0 / e_star * length;
     libm::pow(q / (35948.0 * libm::pow(length, 8.0 / 9.0)), 0.9)

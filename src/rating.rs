@@ -109,6 +109,18 @@ pub fn basic_dynamic_load_rating(g: &RatingGeometry) -> f64 {
         * libm::pow(g.d_we * mm, 29.0 / 27.0)
 }
 
+/// The effective roller length L_we (m) at which [`basic_dynamic_load_rating`] gives `c_r`
+/// (N) for the rest of `g` (its `l_we` unused): the rating solved for the length,
+/// L_we = (C_r / (b_m f_c Z^(3/4) D_we^(29/27)))^(9/7) / cos α in N and mm.
+pub fn roller_length_for_rating(c_r: f64, g: &RatingGeometry) -> f64 {
+    let mm = 1e3;
+    let l_cos_mm = libm::pow(
+        c_r / (B_M * f_c(g.gamma()) * libm::pow(g.z as f64, 0.75) * libm::pow(g.d_we * mm, 29.0 / 27.0)),
+        9.0 / 7.0,
+    );
+    l_cos_mm / libm::cos(g.alpha) / mm
+}
+
 /// Calculated contact stress at the centre of the most heavily loaded roller contact under
 /// the basic static load rating (ISO 76 for roller bearings), Pa.
 pub const STATIC_LIMIT_STRESS: f64 = 4000e6;

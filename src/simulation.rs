@@ -462,7 +462,7 @@ impl Simulation {
         st.outputs.oil_viscosity = qs.oil_viscosity();
         st.outputs.film_ratio_flange = qs.flange_film_ratio_output(&st.outputs.qf, &st.inputs);
         // ISO 281's modified rating life: the oil's kinematic viscosity at its temperature
-        let nu = st.outputs.oil_viscosity / st.params.oil_grade().density(st.inputs.oil_temperature);
+        let nu = st.outputs.oil_viscosity / crate::tribology::viscosity::oil_density(st.params.oil_density, st.inputs.oil_temperature);
         let o = &mut st.outputs;
         let life = qs.rating().modified_life(
             o.life_l10,

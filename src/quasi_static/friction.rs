@@ -309,13 +309,17 @@ impl FrictionModel {
                 let (_, _, p_h) = f.hertz.ellipse(qf);
                 self.lubricant.rib_film_ratio(speed.abs() * kin.slide.abs(), u_e, h, p_h)
             }
-            tr::TractionLaw::NewtonianEyring => {
-                if self.sigma > 0.0 {
-                    h / self.sigma
-                } else {
-                    f64::INFINITY
-                }
-            }
+            tr::TractionLaw::NewtonianEyring => self.isothermal_rib_film_ratio(h),
+        }
+    }
+
+    /// [L22]'s rib film ratio (`traction` 1): the isothermal film `h` over the raceway
+    /// roughness; infinite without roughness.
+    fn isothermal_rib_film_ratio(&self, h: f64) -> f64 {
+        if self.sigma > 0.0 {
+            h / self.sigma
+        } else {
+            f64::INFINITY
         }
     }
 
@@ -822,8 +826,7 @@ impl FrictionModel {
                             }
                             tr::TractionLaw::NewtonianEyring => {
                                 let (a, b, p_h, h) = film();
-                                let film_ratio = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
-                                qf * tr::flange_boundary_mu(self.flange_mu0, film_ratio)
+                                qf * tr::flange_boundary_mu(self.flange_mu0, self.isothermal_rib_film_ratio(h))
                                     + tr::flange_viscous_traction(self.eta0, v_s, h, a, b, p_h)
                             }
                         }

@@ -1783,15 +1783,7 @@ impl QuasiStatic {
     /// [`QuasiStatic::min_film_ratio`] as the output reports it: finite (at most
     /// [`FILM_RATIO_CAP`], which stands for no loaded contact), 0 for dry contacts.
     pub fn film_ratio_output(&self, slice_loads: &[f64], inputs: &Inputs) -> f64 {
-        if self.params.lubrication != Lubrication::Ehl {
-            return 0.0;
-        }
-        let r = self.min_film_ratio(slice_loads, inputs);
-        if r.is_nan() {
-            0.0
-        } else {
-            r.min(FILM_RATIO_CAP)
-        }
+        self.reported_film_ratio(|| self.min_film_ratio(slice_loads, inputs))
     }
 
     /// The rib's film ratio as the output `filmRatio.flange` reports it, at the most heavily
@@ -1799,11 +1791,19 @@ impl QuasiStatic {
     /// Finite (at most [`FILM_RATIO_CAP`], which stands for no loaded rib), 0 for dry
     /// contacts.
     pub fn flange_film_ratio_output(&self, flange_loads: &[f64], inputs: &Inputs) -> f64 {
+        self.reported_film_ratio(|| {
+            let qf = flange_loads.iter().cloned().fold(0.0, f64::max);
+            self.friction.flange_film_ratio(&self.geometry, qf, inputs.relative_speed())
+        })
+    }
+
+    /// A film ratio as the outputs report it: 0 for dry contacts (without computing it), else
+    /// finite, at most [`FILM_RATIO_CAP`] (no loaded contact), 0 where it is undefined.
+    fn reported_film_ratio(&self, ratio: impl FnOnce() -> f64) -> f64 {
         if self.params.lubrication != Lubrication::Ehl {
             return 0.0;
         }
-        let qf = flange_loads.iter().cloned().fold(0.0, f64::max);
-        let r = self.friction.flange_film_ratio(&self.geometry, qf, inputs.relative_speed());
+        let r = ratio();
         if r.is_nan() {
             0.0
         } else {

@@ -156,13 +156,20 @@ impl Lubricant {
     /// point-contact film `h_iso` reduced by inlet shear heating, over the roller end / rib
     /// composite roughness (infinite without roughness).
     pub fn rib_film_ratio(&self, v_s: f64, u_e: f64, h_iso: f64, p_h: f64) -> f64 {
-        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 2.0 };
-        let h = h_iso * thermal_reduction(self.inlet_heating * u_e * u_e, p_h / self.e_prime, slide_roll);
+        let h = self.rib_film(v_s, u_e, h_iso, p_h);
         if self.rib_sigma > 0.0 {
             h / self.rib_sigma
         } else {
             f64::INFINITY
         }
+    }
+
+    /// The rib's film: the isothermal point-contact film `h_iso` reduced by inlet shear heating
+    /// at sliding speed `v_s`, entrainment `u_e` and Hertz pressure `p_h`.
+    #[inline(always)]
+    fn rib_film(&self, v_s: f64, u_e: f64, h_iso: f64, p_h: f64) -> f64 {
+        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 2.0 };
+        h_iso * thermal_reduction(self.inlet_heating * u_e * u_e, p_h / self.e_prime, slide_roll)
     }
 
     /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
@@ -190,8 +197,7 @@ impl Lubricant {
         if !(q > 0.0) {
             return 0.0;
         }
-        let slide_roll = if u_e > 0.0 { v_s / u_e } else { 2.0 };
-        let h = h_iso * thermal_reduction(self.inlet_heating * u_e * u_e, p_h / self.e_prime, slide_roll);
+        let h = self.rib_film(v_s, u_e, h_iso, p_h);
         let share = if self.rib_sigma > 0.0 {
             asperity_share(h / self.rib_sigma)
         } else {

@@ -184,6 +184,12 @@ const T15: f64 = 288.15;
 const T40: f64 = 313.15;
 const T100: f64 = 373.15;
 
+/// Density (kg/m3) at `t` (K) of an oil of density `rho15` at 15 degC (thermal expansion
+/// 6.5e-4 1/K).
+pub fn oil_density(rho15: f64, t: f64) -> f64 {
+    rho15 * (1.0 - OIL_EXPANSION * (t - T15))
+}
+
 impl OilGrade {
     /// The grade through nu at 40 degC and at 100 degC (m2/s, nu40 > nu100 > 0) with density
     /// `rho15` (kg/m3) at 15 degC.
@@ -206,7 +212,7 @@ impl OilGrade {
 
     /// Density (kg/m3) at `t` (K).
     pub fn density(&self, t: f64) -> f64 {
-        self.rho15 * (1.0 - OIL_EXPANSION * (t - T15))
+        oil_density(self.rho15, t)
     }
 
     /// Dynamic viscosity (Pa s) at ambient pressure and `t` (K).
