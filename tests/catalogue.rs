@@ -23,6 +23,13 @@ fn catalogue(d: f64, outside_d: f64, t: f64, c_r: f64, e: f64) -> Catalogue {
     }
 }
 
+/// The 30206 of `../shared/data/bearings.md` as its estimated bearing file reads back.
+fn estimated_30206() -> Bearing {
+    let cat = catalogue(30.0, 62.0, 17.25, 43_000.0, 0.37);
+    let file = cat.estimate().unwrap().bearing_file(&cat, "30206");
+    Bearing::from_json(&serde_json::to_string(&file).unwrap()).unwrap()
+}
+
 /// A published internal geometry: (Z, mean roller diameter, effective length, pitch diameter)
 /// in mm, and its cup angle in degrees.
 struct Published {
@@ -167,9 +174,7 @@ fn catalogue_sets_give_their_rating_and_e_on_one_apex() {
 /// of P = 0.1 C_r.
 #[test]
 fn an_estimated_bearing_runs_at_its_operating_point() {
-    let cat = catalogue(30.0, 62.0, 17.25, 43_000.0, 0.37);
-    let file = cat.estimate().unwrap().bearing_file(&cat, "30206");
-    let b = Bearing::from_json(&serde_json::to_string(&file).unwrap()).unwrap();
+    let b = estimated_30206();
     let mut s = Simulation::new(b.clone());
     s.initialize(0.0).unwrap();
     let out = s.outputs().unwrap().clone();
@@ -372,9 +377,7 @@ fn the_example_bearings_are_what_the_estimate_makes() {
 #[test]
 fn an_estimated_bearing_runs_in_the_dynamic_model() {
     use trb::variables as var;
-    let cat = catalogue(30.0, 62.0, 17.25, 43_000.0, 0.37);
-    let file = cat.estimate().unwrap().bearing_file(&cat, "30206");
-    let b = Bearing::from_json(&serde_json::to_string(&file).unwrap()).unwrap();
+    let b = estimated_30206();
     let mut s = Simulation::new(b.clone());
     s.set_integer(var::FIDELITY, 1).unwrap();
     s.set_real(var::FY, 2000.0).unwrap();
