@@ -25,12 +25,19 @@
 //! Skew also adds friction thrust along the contact lines [D19]: mu q sin(phi) per slice along
 //! the raceway's generatrix, at the slice's contact point, opposing the axial sliding of the
 //! skewed roller on that raceway. The roller's spin adds nothing along its own axis, so that
-//! sliding is the ring's surface speed resolved on the skewed axis: towards the small end on the
-//! cone and towards the large end on the cup for phi > 0 and positive speed. The thrust on the
-//! roller is then towards its large end from the cone and its small end from the cup (a tilt
-//! couple), and the cone's reaction points towards +x, along the applied axial load (the
-//! opposite of [D19]'s statement about its Eq. (9b); docs/model.md). Also the pocket friction
-//! mu F_c at the two corners (a tilt couple).
+//! sliding is minus the ring's surface speed resolved on the skewed axis. For phi > 0 and
+//! positive speed the cone's surface speed resolved on that axis points towards the roller's
+//! large end, so the roller slides towards its small end on the cone, and towards its large end
+//! on the cup. Its speed is |omega_k sin(phi)| (r_k(s) + s sin(a_r)) with omega_k the ring's
+//! speed relative to the cage, r_k(s) the radius of the slice's contact point and s its station
+//! towards the small end: nearly, not exactly, uniform along the line (3-D kinematics,
+//! docs/model.md). The thrust on the roller is then towards its large end from the cone and its
+//! small end from the cup (a tilt couple); the cone's reaction points towards +x, along the
+//! applied axial load, and the cup's towards -x, which tightens the bearing too (the skewed
+//! rollers screw the rings together). The sense goes as sgn(omega_c phi) (omega_c the cone's
+//! speed relative to the cage) and phi has the sign of omega_c, so it never flips (the opposite
+//! of [D19]'s statement about its Eq. (9b); docs/model.md). Also the pocket friction mu F_c at
+//! the two corners (a tilt couple).
 //!
 //! Solver: Newton on 3 + 4Z unknowns started from the in-plane solution; the per-roller
 //! 4x4 blocks and their couplings to the cone are built by central differences of the roller

@@ -1205,6 +1205,18 @@ fn friction_where_the_torque_slope_jumps(mu: &[f64], sweep: &[Outputs]) -> Optio
         .map(|i| mu[i])
 }
 
+/// The rows that hang on the sense of the friction thrust on the cone: the product's follows
+/// from the skewed roller's kinematics and loads the cone along the applied axial load, [D19]'s
+/// offsets it (docs/model.md, 'Differences from [D19]', item 1).
+const D19_SENSE: &str = "differs; the product's sense follows from the kinematics (docs/model.md)";
+
+/// A row's note on the thrust's sense, with what the model gives with that sense reversed (an
+/// experiment the product does not run: docs/model.md, 'Differences from [D19]', item 1,
+/// measured 2026-11-28).
+fn d19_sense(reversed: &str) -> String {
+    format!(" — {D19_SENSE}; with the sense reversed {reversed}")
+}
+
 fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     let mut md = String::from(
         "## 2. [D19] §3: roller skew and dry friction torque (32018X)\n\n\
@@ -1220,15 +1232,23 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     let mut c = Compare::new("[D19]", DRY);
     for (p, label, paper) in [(0, "force", 13.0), (1, "displacement", 15.0)] {
         let o = d.at_mu(p, 0.5);
+        // under force preload the count hangs on the thrust's sense
+        let sense = |reversed: &str| if p == 0 { d19_sense(reversed) } else { String::new() };
         c.row(
             ledger,
-            &format!("rollers in contact, {label} preload, μ 0.5: `loadedRollers`"),
+            &format!(
+                "rollers in contact, {label} preload, μ 0.5: `loadedRollers`{}",
+                sense("13 at μ 0.3–0.4, 11 at 0.45, no equilibrium at 0.5")
+            ),
             paper,
             &[o.map(|o| o.loaded_rollers as f64)],
         );
         c.row(
             ledger,
-            &format!("rollers in contact, {label} preload, μ 0.5: above 1 % of the largest load"),
+            &format!(
+                "rollers in contact, {label} preload, μ 0.5: above 1 % of the largest load{}",
+                sense("13 at μ 0.2–0.4, 11 at 0.45, no equilibrium at 0.5")
+            ),
             paper,
             &[o.map(|o| rollers_above_one_percent(o) as f64)],
         );
@@ -1326,13 +1346,25 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     };
     k.row(
         ledger,
-        "§3.2: the force preload gives the lower total torque at every μ (pocket 0.9 mm)",
+        &format!(
+            "§3.2: the force preload gives the lower total torque at every μ (pocket 0.9 mm){}",
+            d19_sense(
+                "lower wherever an equilibrium exists: 6.69 against 6.94 N m at μ 0.3, 9.29 against 9.87 at 0.4, \
+                 15.1 against 16.8 at 0.45; none at 0.5"
+            )
+        ),
         vec![Some(lower(&d.mu, &d.by_mu[0], &d.by_mu[1], ""))],
     );
     let pocket_mm: Vec<f64> = d.pocket.iter().map(|c| c * 1e3).collect();
     k.row(
         ledger,
-        "§3.3: the force preload gives the lower total torque at every pocket clearance (μ 0.5)",
+        &format!(
+            "§3.3: the force preload gives the lower total torque at every pocket clearance (μ 0.5){}",
+            d19_sense(
+                "an equilibrium exists at 7 of the 16 clearances (not at 0.9 mm), and at each the force preload's torque \
+                 is the lower (0.3 mm: 14.8 against 15.9 N m)"
+            )
+        ),
         vec![Some(lower(&pocket_mm, &d.by_pocket[0], &d.by_pocket[1], " mm"))],
     );
     k.row(
@@ -1382,7 +1414,9 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     );
     k.row(
         ledger,
-        "§3.2 (Fig. 11): Q_f and Q_o fall as μ grows (force preload)",
+        "§3.2 (Fig. 11): Q_f and Q_o fall as μ grows (force preload) — in the product the peaks fall because the \
+         load zone widens (docs/model.md); with the thrust's sense reversed they rise: Qo.max 5.51 → 5.73 kN, Qf.max \
+         288 → 300 N from μ 0.05 to 0.4, no equilibrium at 0.5",
         vec![Some({
             let (a, b) = (&d.by_mu[0][0], d.by_mu[0].last().expect("swept"));
             (
@@ -1402,7 +1436,10 @@ fn d19_section(d: &D19Runs, ledger: &mut Ledger) -> String {
     md += &c.text();
     md += &k.text();
     md += "The sense of the friction thrust on the cone, and with it the roller counts and the order of the two \
-           preloads' torques, is where the model departs from [D19] on purpose: docs/model.md, 'Differences from [D19]'.\n\n";
+           preloads' torques, is where the model departs from [D19] on purpose: in the product it follows from the \
+           skewed roller's kinematics and loads the cone along the applied axial load at every speed, μ and preload \
+           (docs/model.md, 'Differences from [D19]', item 1). The numbers 'with the sense reversed' are the model with \
+           that sense reversed, an experiment the product does not run (docs/model.md, measured 2026-11-28).\n\n";
     ledger.fact(
         "[D19]",
         format!(
