@@ -125,6 +125,20 @@ pub struct Parameters {
     /// ISO 281 contamination factor e_C of the modified rating life (`contamination.eC`).
     #[serde(default = "one")]
     pub contamination_ec: f64,
+    /// The lubricant supply (`supply`) and the inlet oil layer over the flooded film
+    /// (`supply.level`; 0: the supply's own, `tribology::supply`).
+    #[serde(default = "flooded")]
+    pub supply: crate::tribology::Supply,
+    #[serde(default)]
+    pub supply_level: f64,
+    /// The oil's kinematic viscosity at its temperature (m2/s), set with `eta0` by
+    /// [`Parameters::at_oil_temperature`] (0 before: `eta0` over the density at 15 degC).
+    #[serde(skip)]
+    pub oil_nu: f64,
+}
+
+fn flooded() -> crate::tribology::Supply {
+    crate::tribology::Supply::Flooded
 }
 
 fn yes() -> bool {
@@ -188,7 +202,22 @@ impl Parameters {
         } else {
             grade.dynamic(t)
         };
-        Parameters { eta0: eta, ..self.clone() }
+        let oil_nu = eta / crate::tribology::viscosity::oil_density(self.oil_density, t);
+        Parameters {
+            eta0: eta,
+            oil_nu,
+            ..self.clone()
+        }
+    }
+
+    /// The lubricant supply's law for bearing `b` at the oil's temperature.
+    pub fn supply_law(&self, b: &Bearing) -> crate::tribology::SupplyLaw {
+        let nu = if self.oil_nu > 0.0 {
+            self.oil_nu
+        } else {
+            self.eta0 / self.oil_density
+        };
+        crate::tribology::SupplyLaw::new(self.supply, self.supply_level, b.bore, b.outside_diameter, nu)
     }
 
     /// The oil's traction data as the traction laws take them.
@@ -269,6 +298,10 @@ impl Parameters {
             work_budget: DEFAULT_WORK_BUDGET,
             // extreme cleanliness: the life the lubrication alone allows (ISO 281 Table 13)
             contamination_ec: 1.0,
+            // every inlet full of oil, as [W25] and [L22] compute
+            supply: crate::tribology::Supply::Flooded,
+            supply_level: 0.0,
+            oil_nu: 0.0,
         }
     }
 
@@ -421,6 +454,15 @@ impl Parameters {
             return bad(
                 "contamination.eC",
                 format!("must be in [0, 1] (ISO 281's contamination factor), got {}", self.contamination_ec),
+            );
+        }
+        if !(self.supply_level.is_finite() && (0.0..=1e6).contains(&self.supply_level)) {
+            return bad(
+                "supply.level",
+                format!(
+                    "must be in [0, 1e6] (the inlet oil layer over the flooded film; 0: the supply's own), got {}",
+                    self.supply_level
+                ),
             );
         }
         Ok(())

@@ -554,6 +554,7 @@ impl Simulation {
             var::MAX_STEP => p.max_step,
             var::WORK_BUDGET => p.work_budget,
             var::CONTAMINATION_E_C => p.contamination_ec,
+            var::SUPPLY_LEVEL => p.supply_level,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -672,6 +673,7 @@ impl Simulation {
             var::MAX_STEP => &mut p.max_step,
             var::WORK_BUDGET => &mut p.work_budget,
             var::CONTAMINATION_E_C => &mut p.contamination_ec,
+            var::SUPPLY_LEVEL => &mut p.supply_level,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };
@@ -749,6 +751,7 @@ impl Simulation {
             var::THREADS => p.threads as i32,
             var::TRACTION => p.traction as i32,
             var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
+            var::SUPPLY => p.supply as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
             var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
@@ -789,6 +792,7 @@ impl Simulation {
             var::SLICES => p.slices = value as usize,
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
+            var::SUPPLY => p.supply = crate::tribology::Supply::from_index(value as i64).unwrap_or(p.supply),
             var::THREADS => p.threads = value.max(0) as u32,
             var::TRACTION => {
                 p.traction = if value == 0 {

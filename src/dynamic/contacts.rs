@@ -87,6 +87,8 @@ pub(crate) struct Constants {
     /// Full-film traction law and, for law 0, the lubricated contact laws' data.
     traction: tr::TractionLaw,
     lubricant: tr::Lubricant,
+    /// The lubricant supply: starved films and rolling couple (`tribology::supply`).
+    supply: tr::SupplyLaw,
     /// ln(beta eta0 / k): the inlet's thermal loading is exp(this + 2 ln u_e).
     ln_inlet_heating: f64,
     /// EHL rolling resistance at the raceway slices (lubricated, alpha > 0).
@@ -261,6 +263,7 @@ impl Constants {
             viscosity: tr::ViscosityTable::new(p.eta0),
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
+            supply: p.supply_law(b),
             ln_inlet_heating: libm::log(p.oil_beta * p.eta0 / p.oil_conductivity),
             rolling_resistance: p.lubrication != Lubrication::Dry && p.alpha > 0.0,
             alpha: p.alpha,
@@ -430,7 +433,7 @@ pub(crate) fn kinetic_energy(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
 /// and the rolling couple (exp(ln_roll + 0.648 ln u_e + 0.246 ln w)), ln v_s the Eyring argument
 /// eta |v_s| / (h tau_0) and the heating factor's slide-to-roll ratio.
 #[inline(always)]
-fn slice_traction(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_e: f64) -> (f64, f64) {
+fn slice_traction(c: &Constants, line: &LineConst, st: Starved, k: usize, q: f64, vs: f64, u_e: f64) -> (f64, f64) {
     if q <= 0.0 {
         return (0.0, 0.0);
     }
@@ -448,7 +451,7 @@ fn slice_traction(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_
     }
     let w = q * c.inv_slice_len;
     let (ln_ue, ln_w) = (fm::ln(u_e), fm::ln(w));
-    let ln_h_iso = line.ln_film[k] + 0.692 * ln_ue - 0.166 * ln_w;
+    let ln_h_iso = line.ln_film[k] + st.ln_film + 0.692 * ln_ue - 0.166 * ln_w;
     let (coef, heating) = match c.traction {
         tr::TractionLaw::NewtonianEyring => (
             if vs > 0.0 {
@@ -476,7 +479,7 @@ fn slice_traction(c: &Constants, line: &LineConst, k: usize, q: f64, vs: f64, u_
         }
     };
     let couple = if c.rolling_resistance {
-        heating * fm::exp(line.ln_roll[k] + 0.648 * ln_ue + 0.246 * ln_w)
+        heating * fm::exp(line.ln_roll[k] + st.ln_roll + 0.648 * ln_ue + 0.246 * ln_w)
     } else {
         0.0
     };
@@ -533,8 +536,8 @@ fn full_film_stress(c: &Constants, line: &LineConst, k: usize, w: f64, ln_h: f64
 
 /// Traction coefficient of the rib contact (force on the roller -coef v_t) for normal load
 /// `q`, sliding speed `vs` and entrainment speed `u_e` (`tribology::rib`).
-fn rib_traction_coef(c: &Constants, fl: &FlangeConst, q: f64, vs: f64, u_e: f64) -> f64 {
-    let h_iso = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q);
+fn rib_traction_coef(c: &Constants, fl: &FlangeConst, starved: f64, q: f64, vs: f64, u_e: f64) -> f64 {
+    let h_iso = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q) * starved;
     let (ea, eb, ph) = fl.hertz.ellipse(q);
     match c.traction {
         tr::TractionLaw::NewtonianEyring => {
@@ -576,6 +579,35 @@ struct Race<'a> {
     pt_omega: V3,
     /// Largest value of the extra gap term (clearance, lobes) for the cheap gap test.
     gap_max: f64,
+    /// What the supply's starvation does to the films and the rolling couple.
+    starved: Starved,
+}
+
+/// The lubricant supply's starvation at the current speed, as the contact laws take it: ln of
+/// the raceway film's and the rolling couple's factors, and the rib film's factor
+/// (`tribology::supply`; 0, 0, 1 when flooded, which changes no bit).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Starved {
+    pub ln_film: f64,
+    pub ln_roll: f64,
+    pub rib: f64,
+}
+
+impl Starved {
+    fn of(s: tr::Starvation) -> Starved {
+        if s == tr::Starvation::FLOODED {
+            return Starved {
+                ln_film: 0.0,
+                ln_roll: 0.0,
+                rib: 1.0,
+            };
+        }
+        Starved {
+            ln_film: libm::log(s.raceway),
+            ln_roll: libm::log(s.rolling),
+            rib: s.rib,
+        }
+    }
 }
 
 /// Sums of one roller's slice loop against one raceway (force on the roller, its moment about
@@ -740,7 +772,7 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
                 if n_held == 0 {
                     n_held = 1;
                 } else {
-                    let [ta, tb] = slice_traction_pair(c, line, &held[0], &held[1]);
+                    let [ta, tb] = slice_traction_pair(c, line, race.starved, &held[0], &held[1]);
                     add(&held[0], ta);
                     add(&held[1], tb);
                     n_held = 0;
@@ -748,16 +780,16 @@ fn race_slices(c: &Constants, race: &Race, dd: f64, mut slice_loads: Option<&mut
                 continue;
             }
             if n_held == 1 {
-                add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
+                add(&held[0], slice_traction_pair(c, line, race.starved, &held[0], &held[0])[0]);
             }
         }
         let s = &held[n_held];
-        add(s, slice_traction(c, line, k, s.q, s.vs, s.u_e));
+        add(s, slice_traction(c, line, race.starved, k, s.q, s.vs, s.u_e));
         n_held = 0;
     }
     #[cfg(target_arch = "x86_64")]
     if n_held == 1 {
-        add(&held[0], slice_traction_pair(c, line, &held[0], &held[0])[0]);
+        add(&held[0], slice_traction_pair(c, line, race.starved, &held[0], &held[0])[0]);
     }
     sum
 }
@@ -792,21 +824,21 @@ impl Slice {
 /// two-lane kernels' range by the scalar code: (coef, couple) of `a` and of `b`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn slice_traction_pair(c: &Constants, line: &LineConst, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
+fn slice_traction_pair(c: &Constants, line: &LineConst, st: Starved, a: &Slice, b: &Slice) -> [(f64, f64); 2] {
     use crate::simd_math::F2;
     let (q, vs, u_e) = (F2::new(a.q, b.q), F2::new(a.vs, b.vs), F2::new(a.u_e, b.u_e));
-    let (coef, couple, ok) = lanes2::slice_traction_lanes(c, line, [a.k, b.k], q, vs, u_e);
+    let (coef, couple, ok) = lanes2::slice_traction_lanes(c, line, st, [a.k, b.k], q, vs, u_e);
     let ([ca, cb], [pa, pb], bits) = (coef.lanes(), couple.lanes(), ok.bits());
     [
         if bits & 1 != 0 {
             (ca, pa)
         } else {
-            slice_traction(c, line, a.k, a.q, a.vs, a.u_e)
+            slice_traction(c, line, st, a.k, a.q, a.vs, a.u_e)
         },
         if bits & 2 != 0 {
             (cb, pb)
         } else {
-            slice_traction(c, line, b.k, b.q, b.vs, b.u_e)
+            slice_traction(c, line, st, b.k, b.q, b.vs, b.u_e)
         },
     ]
 }
@@ -891,6 +923,8 @@ struct Frame {
     cage_rate: f64,
     cage_pos: V3,
     cage_vel: V3,
+    /// The supply's starvation at the current speed.
+    starved: Starved,
 }
 
 /// The roller-end sphere on the conical rib (Hertz point contact, damping, rib traction) of a
@@ -952,7 +986,7 @@ fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w
                     let v_point = V3::x().cross(&pk) * psid;
                     let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
                     let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-                    rib_traction_coef(c, fl, q, vs, u_e)
+                    rib_traction_coef(c, fl, f.starved.rib, q, vs, u_e)
                 };
                 (-v_t * coef, coef * vs * vs)
             } else {
@@ -1175,6 +1209,7 @@ fn evaluate_roller(
         pt_v0: V3::zeros(),
         pt_omega: V3::x() * psid,
         gap_max: -c.half_clearance * c.cos_o,
+        starved: f.starved,
     };
     let (cone_loads, cup_loads) = match slice_loads {
         Some(roller) => {
@@ -1214,6 +1249,7 @@ fn evaluate_roller(
         pt_v0: f.x_cross_o_l * psid,
         pt_omega: f.x_l * psid,
         gap_max: 0.0,
+        starved: f.starved,
     };
     #[cfg(target_arch = "x86_64")]
     let cone_sum = if c.lane_slices {
@@ -1384,6 +1420,7 @@ pub(crate) fn evaluate(
         cage_rate,
         cage_pos,
         cage_vel,
+        starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
     };
     rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
     // the rollers' shares, added in roller order (the same bits for any thread count)

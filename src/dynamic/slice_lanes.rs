@@ -92,6 +92,7 @@ pub(super) fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_l
             let (cf, cp, ok) = slice_traction_lanes(
                 c,
                 line,
+                race.starved,
                 idx,
                 regular.select(q, F::splat(1.0)),
                 regular.select(vs, F::splat(1.0)),
@@ -106,7 +107,7 @@ pub(super) fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_l
             let (mut cf, mut cp) = (coef.to_array(), couple.to_array());
             for i in 0..N {
                 if done_bits & (1 << i) == 0 {
-                    (cf[i], cp[i]) = slice_traction(c, line, idx[i], q[i], vs[i], u_e[i]);
+                    (cf[i], cp[i]) = slice_traction(c, line, race.starved, idx[i], q[i], vs[i], u_e[i]);
                 }
             }
             (coef, couple) = (F::from_fn(|i| cf[i]), F::from_fn(|i| cp[i]));
@@ -162,11 +163,11 @@ pub(super) fn race_slices_lanes(c: &Constants, race: &Race, dd: f64, mut slice_l
 /// the same formulas in the same order. (coef, couple, the lanes within the lane kernels'
 /// range: the others want the scalar code.)
 #[inline(always)]
-pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, k: [usize; F::N], q: F, vs: F, u_e: F) -> (F, F, M) {
+pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, st: Starved, k: [usize; F::N], q: F, vs: F, u_e: F) -> (F, F, M) {
     let pick = |v: &[f64]| F::from_fn(|i| v[k[i]]);
     let w = q * c.inv_slice_len;
     let (ln_ue, ln_w) = (ln(u_e), ln(w));
-    let ln_h_iso = pick(&line.ln_film) + 0.692 * ln_ue - 0.166 * ln_w;
+    let ln_h_iso = pick(&line.ln_film) + F::splat(st.ln_film) + 0.692 * ln_ue - 0.166 * ln_w;
     let p_mean = (w * pick(&line.k_pmean)).sqrt();
     let ln_vs = ln(vs);
     let (heating, mut ok) = if c.ln_inlet_heating > f64::NEG_INFINITY {
@@ -181,7 +182,7 @@ pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, k: [usize; F
     ok = ok & film_ok;
     let coef = mu * q / vs;
     let couple = if c.rolling_resistance {
-        let ln_couple = pick(&line.ln_roll) + 0.648 * ln_ue + 0.246 * ln_w;
+        let ln_couple = pick(&line.ln_roll) + F::splat(st.ln_roll) + 0.648 * ln_ue + 0.246 * ln_w;
         ok = ok & pair::exp_range(ln_couple);
         heating * exp(ln_couple)
     } else {

@@ -212,6 +212,8 @@ pub struct FrictionModel {
     /// Full-film traction law; for law 0 the lubricated contact laws' data.
     traction: tr::TractionLaw,
     lubricant: tr::Lubricant,
+    /// The lubricant supply: starved films and rolling resistance (`tribology::supply`).
+    supply: tr::SupplyLaw,
     /// Per-slice-position constants at the last speed (`traction` = 0 with EHL).
     cache: SpeedCache,
     /// Solve the thermal Eyring film equation by Halley's method (fidelity 0); Newton's, as
@@ -223,7 +225,7 @@ pub struct FrictionModel {
 }
 
 impl FrictionModel {
-    pub fn new(_b: &Bearing, p: &Parameters, g: &Geometry, cage_ratio: f64, spin_ratio: f64) -> FrictionModel {
+    pub fn new(b: &Bearing, p: &Parameters, g: &Geometry, cage_ratio: f64, spin_ratio: f64) -> FrictionModel {
         // Cone surface moves at (1 - c) r in the cage frame; the roller surface facing it at
         // -w R (w < 0 is the roller spin about its axis from the large to the small end).
         let cone_kin = |k: usize| Kinematics::new(-spin_ratio * g.slice_radius[k], (1.0 - cage_ratio) * g.cone.raceway_radius[k]);
@@ -277,6 +279,7 @@ impl FrictionModel {
             flange_mu0: p.flange_mu0,
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
+            supply: p.supply_law(b),
             cache: SpeedCache {
                 speed: f64::NAN,
                 table_speed: f64::NAN,
@@ -303,7 +306,7 @@ impl FrictionModel {
         }
         let kin = self.flange;
         let u_e = speed.abs() * kin.entrain;
-        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf);
+        let h = self.rib_film(g, f, u_e, qf, speed);
         match self.traction {
             tr::TractionLaw::ThermalEyring => {
                 let (_, _, p_h) = f.hertz.ellipse(qf);
@@ -339,7 +342,13 @@ impl FrictionModel {
         let v_s = speed.abs() * weights.slide[k];
         let slide_roll = if u_e > 0.0 { v_s / u_e } else { 0.0 };
         let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, slide_roll);
-        heating * tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w) / self.sigma
+        heating * tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w) * self.supply.starvation(speed).raceway / self.sigma
+    }
+
+    /// The rib film at entrainment speed `u_e` and load `q`: Chittenden's flooded film of the
+    /// roller end on rib `f`, starved as the supply leaves it at cone speed `speed`.
+    fn rib_film(&self, g: &Geometry, f: &crate::geometry::FlangeContact, u_e: f64, q: f64, speed: f64) -> f64 {
+        tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q) * self.supply.starvation(speed).rib
     }
 
     pub fn needs_slice_loads(&self, lubrication: Lubrication) -> bool {
@@ -350,6 +359,7 @@ impl FrictionModel {
     /// [`SliceConst`]), at |speed| `speed_abs` > 0.
     fn slice_consts(&self, line: &ContactLine, weights: &SliceWeights, speed_abs: f64, out: &mut Vec<SliceConst>) {
         let e_prime = self.lubricant.e_prime;
+        let starved = self.supply.starvation(speed_abs);
         out.clear();
         for k in 0..weights.entrain.len() {
             let u_e = speed_abs * weights.entrain[k];
@@ -382,14 +392,14 @@ impl FrictionModel {
                 // tr::film_line up to its load factor
                 let u = self.eta0 * u_e / (e_prime * r_bar);
                 let g = self.alpha * e_prime;
-                c.film_a = r_bar * 2.922 * fm::powf(u, 0.692) * fm::powf(g, 0.470);
+                c.film_a = r_bar * 2.922 * fm::powf(u, 0.692) * fm::powf(g, 0.470) * starved.raceway;
                 c.e_r = e_prime * r_bar;
                 // tr::rolling_resistance up to its load factor
                 let l = self.slice_len;
                 if self.alpha > 0.0 && l > 0.0 {
                     let gu = self.alpha * self.eta0 * u_e / r_bar;
                     c.rolls = true;
-                    c.roll_a = 29.2 * r_bar / self.alpha * fm::powf(gu, 0.648);
+                    c.roll_a = 29.2 * r_bar / self.alpha * fm::powf(gu, 0.648) * starved.rolling;
                     c.e_r_l = e_prime * r_bar * l;
                 }
             }
@@ -599,6 +609,7 @@ impl FrictionModel {
     fn raceway_sliced_generic(&self, line: &ContactLine, weights: &SliceWeights, loads: &[f64], speed: f64) -> RacewayFriction {
         let sign = if speed < 0.0 { -1.0 } else { 1.0 };
         let e_prime = self.lubricant.e_prime;
+        let starved = self.supply.starvation(speed);
         let mut f = RacewayFriction::default();
         for (k, &q) in loads.iter().enumerate() {
             if !(q > 0.0) {
@@ -609,7 +620,7 @@ impl FrictionModel {
             let v_s = speed.abs() * weights.slide[k];
             let (b, _) = line_contact_half_width(w, line.r_bar[k], e_prime);
             let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
-            let h_iso = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w);
+            let h_iso = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], w) * starved.raceway;
             // the boundary law at the kinematic slide-to-roll ratio: finite at standstill
             let slide_roll = if weights.entrain[k] > 0.0 {
                 weights.slide[k] / weights.entrain[k]
@@ -620,7 +631,7 @@ impl FrictionModel {
             let rolling = if u_e > 0.0 {
                 let p_h = 4.0 / std::f64::consts::PI * p_mean;
                 let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, v_s / u_e);
-                heating * tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], q, self.slice_len)
+                heating * tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar[k], q, self.slice_len) * starved.rolling
             } else {
                 0.0
             };
@@ -666,14 +677,18 @@ impl FrictionModel {
                 let l = s.loaded as f64 * self.slice_len;
                 let w = s.q / l;
                 let u_e = speed.abs() * line.mid.entrain;
-                let h = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar, w);
+                let starved = self.supply.starvation(speed);
+                let h = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar, w) * starved.raceway;
                 let lambda = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
                 let slide_roll = if line.mid.entrain > 0.0 { slide / line.mid.entrain } else { 0.0 };
                 let (b, _) = line_contact_half_width(w, line.r_bar, e_prime);
                 let p_mean = if b > 0.0 { w / (2.0 * b) } else { 0.0 };
                 let mu_fl = tr::full_film_mu(self.eta0, speed * slide, h, p_mean).abs();
                 let mu = tr::traction_mu(lambda, slide_roll, mu_fl);
-                (mu, tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar, s.q, l))
+                (
+                    mu,
+                    tr::rolling_resistance(self.eta0, self.alpha, e_prime, u_e, line.r_bar, s.q, l) * starved.rolling,
+                )
             }
         };
         RacewayFriction {
@@ -798,12 +813,7 @@ impl FrictionModel {
                         // table serves the friction force)
                         let film = || {
                             let (a, b, p_h) = f.hertz.ellipse(qf);
-                            (
-                                a,
-                                b,
-                                p_h,
-                                tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, qf),
-                            )
+                            (a, b, p_h, self.rib_film(g, f, u_e, qf, speed))
                         };
                         match self.traction {
                             tr::TractionLaw::ThermalEyring => {
@@ -811,7 +821,7 @@ impl FrictionModel {
                                 if self.halley {
                                     let law = |q: f64| {
                                         let (a, b, p_h) = f.hertz.ellipse(q);
-                                        let h = tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
+                                        let h = self.rib_film(g, f, u_e, q, speed);
                                         self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                     };
                                     // the table exists at this speed when the raceways' does

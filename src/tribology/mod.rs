@@ -8,6 +8,8 @@
 //!   with elastic entry and limiting shear (default), or the isothermal Newtonian Eyring law;
 //! - `pair.rs`: the raceway traction of two slices at once (x86-64, the dynamic model's);
 //! - `rib.rs`: the roller end on the rib: asperity and film shares from the film ratio;
+//! - `supply.rs`: the lubricant supply: starved films and rolling resistance (Chevalier et al.
+//!   1998, Damiens et al. 2004, SKF's replenishment factor);
 //! - here: the boundary law of [W25] (Kragelskii), the [W25] sixth-power blend of the mixed
 //!   regime, the EHL rolling resistance and dry Coulomb friction [D19].
 //!
@@ -21,11 +23,13 @@ pub mod film;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod pair;
 pub mod rib;
+pub mod supply;
 pub mod traction;
 pub mod viscosity;
 
 pub use film::{film_line, film_line_fast, film_line_log_constant, film_point, thermal_reduction};
 pub use rib::{asperity_share, flange_boundary_mu, flange_viscous_traction, flange_viscous_traction_with, rib_film_traction};
+pub use supply::{Starvation, Supply, SupplyLaw};
 pub use traction::{FilmContact, Rheology, TractionLaw};
 pub use viscosity::{roelands_viscosity, roelands_viscosity_with, OilGrade, Piezoviscosity, ViscosityTable};
 

@@ -1,0 +1,196 @@
+//! The lubricant supply (`supply`, `supply.level`; `tribology::supply`, docs/model.md,
+//! "Lubricant supply"): starved films that tend to the flooded ones, the friction torque
+//! against SKF's frictional-moment model with the same supply, and the energy books of the
+//! dynamic model under every supply.
+
+use trb::bearing::Bearing;
+use trb::model::Outputs;
+use trb::simulation::Simulation;
+use trb::variables as var;
+
+const RPM: f64 = std::f64::consts::PI / 30.0;
+
+/// The bearing's element at `rpm` and axial load `fa` with the integer parameters `ints` and
+/// real parameters `reals` set, initialised (fidelity 0 unless `ints` says otherwise).
+fn element(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Simulation {
+    let mut s = Simulation::new(b.clone());
+    for &(vr, v) in ints {
+        s.set_integer(vr, v).unwrap();
+    }
+    for &(vr, v) in reals {
+        s.set_real(vr, v).unwrap();
+    }
+    s.set_real(var::SPEED, rpm * RPM).unwrap();
+    s.set_real(var::FX, fa).unwrap();
+    s.initialize(0.0).unwrap();
+    s
+}
+
+fn outputs(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Outputs {
+    element(b, rpm, fa, ints, reals).outputs().unwrap().clone()
+}
+
+/// Both film ratios rise continuously and monotonically with the inlet layer and reach the
+/// flooded ones; with a layer far above the flooded film every output is the flooded
+/// element's, bit for bit, at both fidelities. A starved supply's own layer thins both films,
+/// the rib's (a compact contact) more than the raceways'.
+#[test]
+fn the_starved_films_tend_to_the_flooded_ones() {
+    for name in ["32008", "TRB130x230"] {
+        let b = Bearing::preset(name).unwrap();
+        let flooded = outputs(&b, 1500.0, 5e3, &[], &[]);
+        let mut last = (0.0, 0.0);
+        for level in [0.02, 0.05, 0.1, 0.2, 0.5, 0.9, 1.0, 1.1, 2.0, 5.0] {
+            let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
+            let (race, rib) = (o.film_ratio_raceway, o.film_ratio_flange);
+            eprintln!("{name}, level {level}: film ratio raceway {race:.4}, rib {rib:.4}");
+            assert!(race > last.0 && rib > last.1, "{name}: level {level}: {race}, {rib} after {last:?}");
+            assert!(race <= flooded.film_ratio_raceway * (1.0 + 1e-9) && rib <= flooded.film_ratio_flange * (1.0 + 1e-9));
+            last = (race, rib);
+        }
+        // continuity: a relative step of 1e-6 in the layer moves the film ratios by less
+        // than 1e-6 relative (the law's slope in r is below 1)
+        let near = |level: f64| outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
+        let (a, c) = (near(0.7), near(0.7 * (1.0 + 1e-6)));
+        assert!((c.film_ratio_raceway / a.film_ratio_raceway - 1.0).abs() < 1.5e-6);
+        assert!((c.film_ratio_flange / a.film_ratio_flange - 1.0).abs() < 1.5e-6);
+        // the flooded element, bit for bit, under a layer of 1e6 flooded films
+        let thick = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, 1e6)]);
+        assert_eq!(thick, flooded, "{name}: a thick layer is the flooded supply");
+        // the supply's own layer
+        for supply in [1, 2, 3] {
+            let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, supply)], &[]);
+            let race = o.film_ratio_raceway / flooded.film_ratio_raceway;
+            let rib = o.film_ratio_flange / flooded.film_ratio_flange;
+            eprintln!("{name}, supply {supply}: raceway film x {race:.3}, rib film x {rib:.3}");
+            assert!(race < 1.0 && rib < race && rib > 0.5, "{name}, supply {supply}: {race}, {rib}");
+        }
+    }
+    // the dynamic model: the same bits for a thick layer and flooded, over two steps
+    let b = Bearing::preset("32008").unwrap();
+    let run = |reals: &[(u32, f64)], supply: i32| {
+        let mut s = element(&b, 1500.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], reals);
+        s.do_step(0.0, 1e-3).unwrap();
+        s.do_step(1e-3, 1e-3).unwrap();
+        s.outputs().unwrap().clone()
+    };
+    assert_eq!(run(&[(var::SUPPLY_LEVEL, 1e6)], 2), run(&[], 0));
+}
+
+/// The friction torque against SKF's frictional-moment model (`trb::skf_friction`) with the
+/// same supply: SKF's K_rs for the supply (flooded: no starvation, phi_rs = 1) and the
+/// preset's oil (for grease, its base oil), for 32008 (as SKF 32008 X) and the default
+/// bearing (as SKF 32226), over speed and axial load.
+/// - What the supply changes follows SKF: the torque under each supply over the flooded
+///   torque is within ±10 % of SKF's ratio, at every point.
+/// - From 1500 rpm the torque is within ±30 % of SKF's in every supply.
+/// - At 500 rpm it is 0.52-0.74 of SKF's in every supply (measured 2026-11-28): the films are
+///   mixed there (32008: rib film ratio 0.7-1.0), and the [W25] regime law gives the
+///   asperities far less of the load than SKF's phi_bl weighting of mu_bl = 0.15 does
+///   (docs/validation-notes.md, "Lubricant supply"). The bound below holds that state.
+#[test]
+fn the_torque_follows_skf_in_every_supply() {
+    use trb::skf_friction as skf;
+    let cases = [
+        (
+            "32008",
+            skf::series_32008(),
+            vec![
+                (500.0, 2e3),
+                (1500.0, 2e3),
+                (3000.0, 2e3),
+                (500.0, 8e3),
+                (1500.0, 8e3),
+                (3000.0, 8e3),
+            ],
+        ),
+        (
+            "TRB130x230",
+            skf::trb130x230_series(),
+            vec![
+                (500.0, 30e3),
+                (1500.0, 30e3),
+                (3500.0, 30e3),
+                (4500.0, 30e3),
+                (3500.0, 12e3),
+                (3500.0, 39e3),
+            ],
+        ),
+    ];
+    let k_rs = [
+        0.0,
+        skf::K_RS_OIL_BATH_OR_JET,
+        skf::K_RS_GREASE_OR_OIL_AIR,
+        skf::K_RS_GREASE_OR_OIL_AIR,
+    ];
+    let mut worst = (f64::INFINITY, 0.0_f64);
+    for (name, bearing, points) in cases {
+        let b = Bearing::preset(name).unwrap();
+        for &(n, fa) in &points {
+            let mut flooded = (0.0, 0.0);
+            for (supply, &k) in k_rs.iter().enumerate() {
+                let lub = skf::Lubrication {
+                    k_rs: k,
+                    ..skf::Lubrication::oil_bath(b.eta0, None)
+                };
+                let torque = outputs(&b, n, fa, &[(var::SUPPLY, supply as i32)], &[]).friction_torque;
+                let reference = skf::frictional_moment(&bearing, &lub, n * RPM, 0.0, fa).total;
+                if supply == 0 {
+                    flooded = (torque, reference);
+                }
+                let ratio = torque / reference;
+                let effect = (torque / flooded.0) / (reference / flooded.1);
+                eprintln!(
+                    "{name}, supply {supply}, {n} rpm, Fa {} kN: {torque:.3} N m, SKF {reference:.3} N m ({ratio:.3}; the supply's effect over SKF's {effect:.3})",
+                    fa * 1e-3
+                );
+                assert!(
+                    (effect - 1.0).abs() < 0.1,
+                    "{name}, supply {supply}, {n} rpm, {fa} N: effect {effect}"
+                );
+                let bounds = if n >= 1500.0 { 0.7..=1.3 } else { 0.5..=1.3 };
+                assert!(
+                    bounds.contains(&ratio),
+                    "{name}, supply {supply}, {n} rpm, {fa} N: {torque} against {reference}"
+                );
+                worst = (worst.0.min(ratio), worst.1.max(ratio));
+            }
+        }
+    }
+    eprintln!("torque over SKF's: {:.3} to {:.3}", worst.0, worst.1);
+}
+
+/// Under every supply the dynamic model's energy books close: over 3 ms of the 32008 at
+/// 3000 rpm with a radial load (the rollers' spin and skew ring through the load zone), the
+/// work of the shaft equals the contacts' dissipation plus the change of kinetic energy
+/// (trapezoid over 0.1 ms samples).
+#[test]
+fn the_energy_books_close_under_every_supply() {
+    let b = Bearing::preset("32008").unwrap();
+    for supply in 0..4 {
+        let mut s = element(&b, 3000.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], &[(var::FY, 3e3)]);
+        let speed = 3000.0 * RPM;
+        let power = |s: &mut Simulation| {
+            let o = s.outputs().unwrap();
+            (o.friction_torque * speed, o.power_loss)
+        };
+        let (mut input, mut loss) = power(&mut s);
+        let ke0 = s.kinetic_energy();
+        let (mut e_in, mut e_loss) = (0.0, 0.0);
+        let dt = 1e-4;
+        for k in 0..30 {
+            s.do_step(k as f64 * dt, dt).unwrap();
+            let (a, l) = power(&mut s);
+            e_in += 0.5 * (a + input) * dt;
+            e_loss += 0.5 * (l + loss) * dt;
+            (input, loss) = (a, l);
+        }
+        let dke = s.kinetic_energy() - ke0;
+        let residual = e_in - e_loss - dke;
+        eprintln!("supply {supply}: shaft work {e_in:.5e} J, dissipated {e_loss:.5e} J, kinetic energy change {dke:.3e} J");
+        assert!(
+            residual.abs() < 0.02 * e_loss,
+            "supply {supply}: residual {residual} J of {e_loss} J"
+        );
+    }
+}
