@@ -24,6 +24,7 @@ pub mod portable;
 pub mod report;
 pub mod scenario;
 pub mod simulate;
+pub mod soak;
 pub mod stress;
 pub mod study;
 pub mod svg;
@@ -47,12 +48,14 @@ pub enum Command {
     Demo(demo::DemoArgs),
     /// Run the cases of the studies [D19], [L22], [Y22]; write docs/results-studies.md and docs/figures/.
     Study(study::StudyArgs),
-    /// Run the numerical stress matrix (issue 6) and update docs/robustness.md.
+    /// Run the numerical stress matrix and update docs/robustness.md.
     Stress(stress::StressArgs),
     /// Benchmark: work-precision of the dynamic model, kernels and targets; update docs/performance.md.
     Bench(bench::BenchArgs),
     /// Bearing files: `show NAME` prints a preset as a bearing file to start from.
     Bearing(bearing::BearingArgs),
+    /// Hours of duty: a duty cycle at fidelity 0 and a long run at fidelity 1; update docs/soak.md.
+    Soak(soak::SoakArgs),
 }
 
 /// Run the parsed command line.
@@ -65,6 +68,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Stress(args) => stress::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Bearing(args) => bearing::run(args),
+        Command::Soak(args) => soak::run(args),
     }
 }
 
