@@ -34,4 +34,5 @@ pub mod simulation;
 pub mod skf_friction;
 pub mod tribology;
 pub mod variables;
+pub mod variables_doc;
 pub mod warnings;

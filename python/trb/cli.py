@@ -82,6 +82,8 @@ def _main(args) -> int:
 
     sweep = spec.load(args.sweep, trb)
     print(f"{args.sweep}: {sweep.mode}, {len(sweep.cases)} cases, bearing {sweep.bearing}, {len(sweep.value_columns)} value columns")
+    if sweep.held:
+        print(f"  held inputs, from the base scenario or else the bearing's operating point (a column each in the results): {', '.join(sweep.held)}")
     if args.dry_run:
         from .store import Store
 

@@ -74,10 +74,10 @@ fn run_dynamic(base: &Path, csv: &Path) -> Result<(), CliError> {
     println!();
     let simulated = scenario.stop_time - scenario.start_time;
     println!(
-        "{:.0} ms simulated in {:.2} s of wall time ({:.0} x real time)",
+        "{:.0} ms simulated in {:.2} s of wall time ({})",
         simulated * 1e3,
         summary.wall.as_secs_f64(),
-        summary.wall.as_secs_f64() / simulated
+        simulate::real_time(simulated, summary.wall.as_secs_f64())
     );
     let svg = csv.with_extension("svg");
     std::fs::write(&svg, skew_and_tilt_svg(&text).map_err(CliError::failed)?)

@@ -212,10 +212,12 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
 
     let _ = writeln!(h, "<h2 id=\"limits\">What it does not model</h2>\n<ul>");
     for item in [
-        "Temperature: the oil viscosity <code>oil.eta0</code> is a parameter; there is no thermal model, \
-         no churning or oil-bath drag and no starvation.",
+        "Temperature: the bulk oil temperature is an input (<code>oilTemperature</code>) and the viscosity \
+         follows it; the element computes no temperatures of its own (no thermal network, no flash \
+         temperature) and no churning or oil-bath drag. Starvation follows the parameter \
+         <code>supply</code>.",
         "Elastic rings, shaft and housing: the rings are rigid bodies apart from the local contact \
-         deformation; the cup is fixed. The shaft deflection enters only as the imposed cone tilts \
+         deformation; the cup is the reference ring and turns at <code>cupSpeed</code>. The shaft deflection enters only as the imposed cone tilts \
          <code>xi</code>, <code>zeta</code> (the moments needed to hold them are the outputs \
          <code>reaction.My</code>, <code>reaction.Mz</code>), limited to \u{b1}0.5 deg.",
         "Wear, damage and surface temperature (flash temperature) are not computed; the lives are \

@@ -61,19 +61,23 @@ pub fn run(args: SimulateArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// How a run's wall time compares with the time it simulated, saying which way: "3.2 × faster
+/// than real time" or "2.5 × slower than real time".
+pub fn real_time(simulated: f64, wall: f64) -> String {
+    let (ratio, way) = if wall <= simulated {
+        (simulated / wall, "faster")
+    } else {
+        (wall / simulated, "slower")
+    };
+    let digits = if ratio >= 10.0 { 0 } else { 1 };
+    format!("{ratio:.digits$} × {way} than real time")
+}
+
 pub fn summary_line(scenario: &Scenario, summary: &RunSummary, out: &Path) -> String {
     let simulated = scenario.stop_time - scenario.start_time;
     let wall = summary.wall.as_secs_f64();
     let speed = if wall > 0.0 {
-        let ratio = simulated / wall;
-        let digits = if ratio >= 10.0 {
-            0
-        } else if ratio >= 1.0 {
-            1
-        } else {
-            3
-        };
-        format!(", {ratio:.digits$}x real time")
+        format!(", {}", real_time(simulated, wall))
     } else {
         String::new()
     };

@@ -85,7 +85,7 @@ pub fn starved_film(r: f64, gamma: f64) -> f64 {
         return 0.0;
     }
     // r / (1 + r^g)^(1/g) = 1 / (1 + r^-g)^(1/g): finite for every r > 0
-    (1.0 + r.powf(-gamma)).powf(-1.0 / gamma)
+    libm::pow(1.0 + libm::pow(r, -gamma), -1.0 / gamma)
 }
 
 /// The layer r that gives the starved film ratio `s` in (0, 1) under exponent `gamma`: the
@@ -97,7 +97,7 @@ pub fn layer_for_film(s: f64, gamma: f64) -> f64 {
     if !(s > 0.0) {
         return 0.0;
     }
-    (s.powf(-gamma) - 1.0).powf(-1.0 / gamma)
+    libm::pow(libm::pow(s, -gamma) - 1.0, -1.0 / gamma)
 }
 
 /// What starvation does at one speed: factors on the flooded raceway film, the flooded rib film
@@ -157,7 +157,7 @@ impl SupplyLaw {
     /// SKF's phi_rs at shaft speed `speed` (rad/s, relative to the cup).
     pub fn replenishment(&self, speed: f64) -> f64 {
         let rpm = speed.abs() * 30.0 / std::f64::consts::PI;
-        (-self.rate_per_rpm * rpm).exp()
+        libm::exp(-self.rate_per_rpm * rpm)
     }
 
     /// The inlet layer (over the flooded film) at speed `speed` (rad/s).
