@@ -44,7 +44,7 @@ pub enum LoadCausality {
 /// The default `integrator`: automatic (3), the cheaper of Dormand-Prince and Rosenbrock-W per
 /// communication interval (`dynamic/switching.rs`). Measured at the presets' tolerance 1e-6 on
 /// the benchmark scenarios (docs/performance.md): the fastest or within 20 % of the fastest
-/// method in each, where Dormand-Prince (the default before) is 9x slower in steady running
+/// method in each, where Dormand-Prince alone is 9x slower in steady running
 /// and 2.3x slower on the run-up from rest.
 pub const AUTOMATIC_INTEGRATOR: u32 = 3;
 

@@ -1,4 +1,4 @@
-//! Either ring may rotate (issue 14, item 3): the input `cupSpeed` turns the cup.
+//! Either ring may rotate: the input `cupSpeed` turns the cup.
 //!
 //! Seen from the cup, a bearing whose rings both turn is one with a standing cup and the cone
 //! at the relative speed omega_i - omega_o: the rolling and sliding speeds, traction and

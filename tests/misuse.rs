@@ -1,4 +1,4 @@
-//! Robustness against misuse (issue 6), through the FMU's C ABI in process and through
+//! Robustness against misuse, through the FMU's C ABI in process and through
 //! `Simulation`:
 //! - every FMI function called in every reachable state, against the allowed-state table of
 //!   the FMI 2.0 standard as the Reference FMUs implement it (`fmi2Functions.c`);

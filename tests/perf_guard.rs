@@ -1,4 +1,4 @@
-//! Regression guard on machine-independent work counts (issue 5): integrator steps and
+//! Regression guard on machine-independent work counts: integrator steps and
 //! right-hand-side evaluations of the dynamic model, and Newton iterations of the
 //! quasi-static model, for short fixed scenarios. Wall time depends on the machine and its
 //! load; these counts depend only on the model and the algorithms, so a change that makes
@@ -135,7 +135,7 @@ fn rosenbrock_work_with_ramped_inputs() {
 #[test]
 fn rosenbrock_work_in_a_run_up_from_rest_with_the_speed_ramped() {
     // the first 0.2 ms of the [W25] run-up (0 -> 3500 rpm in 20 ms, Fa 30 kN) in one step,
-    // the speed ramped by the master's input derivative: the stages take df/dt (before:
+    // the speed ramped by the master's input derivative: the stages take df/dt (without it
     // 7032 RHS, steps near 50 ns against the regularised friction of near-standstill)
     let mut s = Simulation::new(Bearing::preset("TRB130x230-W25").unwrap());
     s.set_integer(var::FIDELITY, 1).unwrap();
@@ -183,17 +183,13 @@ fn quasi_static_newton_iterations_under_combined_load() {
     );
 }
 
-/// Baselines (steps, RHS). Recorded 2026-11-21 at commit 192e5c8 + this file; re-recorded
-/// 2026-11-24 (session 20) where the counts had moved: Dormand-Prince was 124 / 745,
-/// Rosenbrock-W 83 / 357 (fewer steps since then, before 5c14e35, not traced to one commit;
-/// the two-lane right-hand side and the roller threads of that session left every count as
-/// it was). Re-recorded in session 22: Dormand-Prince 123 / 745 -> 101 / 613 because the
-/// [W25] case now starts in its steady running state (`startSteady`), not at the
-/// quasi-static seat; Rosenbrock-W 72 / 313 -> 65 / 285 with the azimuths' finite
-/// differences floored at 1 rad (`perturbation_scales` in src/dynamic/mod.rs).
+/// Baselines (steps, RHS); the git log tells when and why each was recorded. Dormand-Prince
+/// on the [W25] case from its steady running state (`startSteady`); Rosenbrock-W from the
+/// quasi-static seat under combined load, with the azimuths' finite differences floored at
+/// 1 rad (`perturbation_scales` in src/dynamic/mod.rs).
 const BASE_DP: (i32, i32) = (101, 613);
 const BASE_ROS: (i32, i32) = (65, 285);
-/// The automatic integrator (session 23), both from the quasi-static seat at tolerance 1e-6.
+/// The automatic integrator, both from the quasi-static seat at tolerance 1e-6.
 /// Combined load, the first 1 ms (the seat's ring): 1632 RHS, against Dormand-Prince 937 and
 /// Rosenbrock-W 2053 (its first interval runs Rosenbrock-W without a budget, the explicit
 /// method's cost not being known before the first Jacobian; over the benchmark's 10 ms it is
@@ -201,20 +197,18 @@ const BASE_ROS: (i32, i32) = (65, 285);
 /// RHS, against Dormand-Prince 3491 and Rosenbrock-W 13497.
 const BASE_AUTO: (i32, i32) = (216, 1632);
 const BASE_AUTO_JUMPS: i32 = 4218;
-/// Session 24: the default settings (automatic integrator, tolerance 1e-5 since this session)
-/// on the settled [W25] case, 40 ms: 60 steps, 265 RHS (at 1e-6 it was 1049 RHS); Rosenbrock-W
-/// with ramped loads (`tests/input_interpolation.rs`): 4833 RHS, against 20553 held; 4686 since
-/// session 26 (no Jacobian refresh at every ramped interval).
+/// The default settings (automatic integrator, tolerance 1e-5) on the settled [W25] case,
+/// 40 ms: 60 steps, 265 RHS (1049 RHS at tolerance 1e-6); Rosenbrock-W with ramped loads
+/// (`tests/input_interpolation.rs`): 4686 RHS, against 20553 with the loads held.
 const BASE_DEFAULT: (i32, i32) = (60, 265);
 const BASE_ROS_RAMPED: i32 = 4686;
-/// Session 26 (2026-11-25), df/dt in the Rosenbrock-W stages and the Jacobian's age capped
-/// at 4 steps while the speed ramps.
+/// Rosenbrock-W with df/dt in its stages and the Jacobian's age capped at 4 steps while the
+/// speed ramps near standstill.
 const BASE_ROS_RUN_UP: i32 = 2493;
 /// 500 steps x 2 evaluations (predictor-corrector) + the Gill start.
 const BASE_GMH_RHS: i32 = 1007;
 /// About 1 Newton iteration per step while the azimuth table of the warm start fills (its
 /// predictor interpolates each roller's unknowns from solutions recorded at nearby azimuths in
 /// earlier steps, 64 bins per pitch), none once it has filled; the first steps still use the
-/// spatial predictor (2 each). Was 100 (2 per step with the spatial predictor alone) until
-/// the table predictor.
+/// spatial predictor (2 each); with the spatial predictor alone it would be 100 (2 per step).
 const BASE_QS_ITERATIONS: i32 = 48;

@@ -1,4 +1,4 @@
-//! The quasi-static friction with a shaft speed that changes (issue 13, item 4): a speed held
+//! The quasi-static friction with a shaft speed that changes: a speed held
 //! since the last solve reads the friction laws from the per-speed tables, a speed that
 //! changes takes the laws themselves (four slices at a time), which a table rebuilt every step
 //! would cost many times over. Which one a step takes is decided from the warm start (the last

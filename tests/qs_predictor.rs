@@ -1,9 +1,9 @@
-//! The quasi-static warm start in a smooth time table (issue 13, item 4): the radial load
+//! The quasi-static warm start in a smooth time table: the radial load
 //! (and the shaft deflection) vary as (1 + 0.2 sin(2 pi t / 0.1 s)), 1 ms steps, from t = 0.
 //! Newton iteration counts are deterministic (machine independent), so they are checked
 //! here as numbers: the space-time predictor (`QuasiStatic::predict_trend`) and the
 //! relaxation of unbalanced rollers before the first Newton step
-//! (`QuasiStatic::relax_unbalanced_rollers`) must keep them below what was needed before.
+//! (`QuasiStatic::relax_unbalanced_rollers`) must keep them below the counts without them.
 //! And a solve restored from a serialized state must replay bit for bit in such a table (the
 //! predictor reads the warm start only).
 
@@ -44,13 +44,13 @@ fn iterations(preset: &str, fy: Option<f64>, xi_deg: f64, steps: usize) -> Vec<i
 
 #[test]
 fn smooth_table_needs_fewer_newton_iterations() {
-    // (preset, Fy, xi (deg), largest mean iterations per step). Before the space-time
+    // (preset, Fy, xi (deg), largest mean iterations per step). Without the space-time
     // predictor and the relaxation of unbalanced rollers: 3.37, 3.43, 2.76 and 3.10; with the
     // predictor alone 3.04, 2.73, 2.59 and 2.88; with both 2.87, 2.39, 2.25 and 2.53.
     // TRB130x230 and 32008 (a full load zone): 1.98 and 2.00 with the cubic spatial
     // interpolation alone, 1.27 and 1.38 with the quintic where the samples are smooth.
-    // The largest count of a step (after the first 10): 32018X took 6 and 5 where a roller
-    // the flange barely touches had three local Newton steps before the global ones
+    // The largest count of a step (after the first 10): 32018X takes 6 and 5 where a roller
+    // the flange barely touches has three local Newton steps before the global ones
     // (`QuasiStatic::relax_unbalanced_rollers`), 4 with ten.
     let mut failed = Vec::new();
     for (preset, fy, xi, limit, most) in [
@@ -132,9 +132,9 @@ fn no_step_of_the_table_cuts_newton_down_for_one_roller() {
 /// Constant inputs on a slow shaft (32018X, [D19]: 60 rpm, Fy 35 kN; the cage advances a
 /// hundredth of a pitch per 1 ms step): once the azimuth table has filled, most steps stop at
 /// its prediction. The table is tried before the linear temporal extrapolation and keeps only
-/// solutions converged well below the tolerance; before, the extrapolation served every step
-/// and the recorded predictions drifted up to the tolerance: 1.10 iterations per step over
-/// these steps (0.33 now; with the misaligned shaft 1.33, now 0.84).
+/// solutions converged well below the tolerance; with the extrapolation serving every step,
+/// the recorded predictions drift up to the tolerance: 1.10 iterations per step over these
+/// steps (0.33 with the table; with the misaligned shaft 1.33 against 0.84).
 #[test]
 fn constant_load_on_a_slow_shaft_stops_at_the_table_prediction() {
     for (fy, xi, limit) in [(Some(35e3), 0.0, 0.6), (None, 0.004, 1.0)] {

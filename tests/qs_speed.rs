@@ -1,4 +1,4 @@
-//! Cost of one quasi-static doStep (fidelity 0) in the cases of issue 13, item 4: for every
+//! Cost of one quasi-static doStep (fidelity 0) in its benchmark cases: for every
 //! preset the combined-load, deflected and dry cases, warm-started, 1 ms communication steps.
 //! All tests here are ignored (they measure, they do not check):
 //!

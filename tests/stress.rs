@@ -1,4 +1,4 @@
-//! The quick subset of the numerical stress matrix (issue 6): the same cases as
+//! The quick subset of the numerical stress matrix: the same cases as
 //! `cargo run --release -- stress`, with shorter time-dependent runs, through `Simulation`
 //! and (a representative subset) through the FMU's C ABI, compared bitwise.
 //!
@@ -11,11 +11,11 @@
 #[path = "../src/cli/stress/matrix.rs"]
 mod matrix;
 
-/// (case id, text in the failure reason) of the failures reported to the lead (see
+/// (case id, text in the failure reason) of the failures known and documented (see
 /// docs/robustness.md, "Findings").
 const KNOWN: &[(&str, &str)] = &[
-    // F1-F5 of docs/robustness.md were fixed in the quasi-static solver and validation; add new
-    // entries here only with a reported finding.
+    // F1-F5 of docs/robustness.md are fixed in the quasi-static solver and validation; add
+    // entries here only with a documented finding.
 ];
 
 fn threads() -> usize {

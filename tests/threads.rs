@@ -1,4 +1,4 @@
-//! The dynamic model's rollers on a thread pool (`threads`, issue 13 item 3): the same bits
+//! The dynamic model's rollers on a thread pool (`threads`): the same bits
 //! as on one thread, for the default integrator and for Rosenbrock-W (whose Jacobian
 //! evaluates the right-hand side with perturbed states), under combined load and
 //! misalignment and on the lobed cylindrical preset; a state saved with a pool replays.

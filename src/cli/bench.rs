@@ -1,4 +1,4 @@
-//! `trb bench [--quick] [--repeats N] [--filter TEXT]`: the performance report of issue 5.
+//! `trb bench [--quick] [--repeats N] [--filter TEXT]`: the performance report.
 //!
 //! 1. Work-precision of the dynamic model: every scenario in `benches/scenarios/` is run with
 //!    a sweep of settings of the three integrators (`precision::sweep`), each repeated for
@@ -32,7 +32,7 @@ pub const END: &str = "<!-- bench:end -->";
 /// Runs longer than this (s) are not repeated: their relative noise is small.
 const LONG_RUN: f64 = 10.0;
 
-/// The error level of the targets of issue 5 (torque and skew).
+/// The error level of the targets (torque and skew).
 const TARGET_ERROR: f64 = 1e-3;
 
 #[derive(Debug, Clone, Args)]
@@ -348,8 +348,8 @@ fn long_runs(results: &[ScenarioResult], seconds: f64) -> Result<Vec<LongRun>, C
             precision::torque_skew_error(&meas.errors),
         ));
     }
-    // Issue 13's "real time at default settings": the default integrator at the preset's
-    // tolerance, whatever the window says is cheapest
+    // Real time at default settings: the default integrator at the preset's tolerance,
+    // whatever the window says is cheapest
     let default = Method {
         integrator: trb::model::AUTOMATIC_INTEGRATOR as i32,
         setting: trb::simulation::Simulation::new(w25.scenario.bearing.bearing.clone())
@@ -456,7 +456,7 @@ fn document(
 }
 
 fn targets(d: &mut String, results: &[ScenarioResult], k: &Kernels, long: &[LongRun]) {
-    let _ = writeln!(d, "### Targets of issue 5 (17 rollers, 20 slices, one core)\n");
+    let _ = writeln!(d, "### Targets (17 rollers, 20 slices, one core)\n");
     let status = |v: f64, goal: f64| if v <= goal { "met" } else { "not met" };
     let mut rows = vec![
         vec![

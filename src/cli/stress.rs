@@ -1,5 +1,5 @@
 //! `trb stress [--quick] [--fidelity 0,1] [--out docs/robustness.md]`: the numerical stress
-//! matrix of issue 6 (see `stress/matrix.rs` for the cases and the checks), written into the
+//! matrix (see `stress/matrix.rs` for the cases and the checks), written into the
 //! generated section of `docs/robustness.md`. Exit code 1 when any case FAILED.
 //!
 //! The hand-written parts of the document stay as they are: only the text between the
@@ -21,8 +21,8 @@ pub struct StressArgs {
     /// The quick subset: the same cases with shorter time-dependent runs (as `cargo test` runs them).
     #[arg(long)]
     pub quick: bool,
-    /// Fidelities to run, comma separated (fidelity 1 cases report "not available" until the
-    /// dynamic model exists).
+    /// Fidelities to run, comma separated (the cases of a fidelity this build lacks report
+    /// "not available").
     #[arg(long, value_delimiter = ',', default_value = "0")]
     pub fidelity: Vec<i32>,
     /// Document to update.

@@ -455,9 +455,9 @@ impl Dynamic {
         // inputs hides errors behind the filtered error estimate. Inputs that ramp over the
         // interval and move the contacts cap its age instead (`rosenbrock::RAMPED_MAX_AGE`):
         // in the [W25] run-up with the speed ramped at tolerance 1e-4, a Jacobian kept from
-        // standstill held the cage stuck until 11 ms instead of 0.7 ms (skew error 390 %);
-        // refreshed at every interval, as here until session 26, the run-up still lost 38 %
-        // at 1e-4 within its first interval, and the cap makes that refresh redundant.
+        // standstill holds the cage stuck until 11 ms instead of 0.7 ms (skew error 390 %);
+        // a refresh at every ramped interval without the cap still lets the run-up lose 38 %
+        // at 1e-4 within its first interval, and with the cap it only adds cost.
         if jumped {
             if let Integrator::Rosenbrock(_) | Integrator::Automatic { .. } = self.ig {
                 rosenbrock::mark_jacobian_stale(&mut state.memory);
@@ -806,10 +806,10 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
 /// The floors of the finite differences' perturbations, per state (the perturbation of state
 /// i is sqrt(eps) max(|y_i|, floor_i)): the tolerance scales, except for the azimuths of the
 /// rollers and the cage, angles of order one whatever their magnitude, floored at 1 rad. With
-/// the tolerance scale (1e-4 rad) an azimuth at 0 — the cage and roller 1 at t = 0 — was
-/// perturbed by 2e-12 rad and its Jacobian column was round-off: Rosenbrock-W from the
-/// steady [W25] state at tolerance 1e-5 then took 137 steps in 20 ms where one per 1 ms
-/// interval holds the tolerance (31 steps with the floor).
+/// the tolerance scale (1e-4 rad) an azimuth at 0 — the cage and roller 1 at t = 0 — would be
+/// perturbed by 2e-12 rad and its Jacobian column be round-off: Rosenbrock-W from the steady
+/// [W25] state at tolerance 1e-5 would take 137 steps in 20 ms where one per 1 ms interval
+/// holds the tolerance (31 steps with the floor).
 fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
     let tol = p.tolerance.max(MIN_TOLERANCE);
     let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();

@@ -1,4 +1,4 @@
-//! Where the dynamic model's stiffness sits (issue 13, item 5): the eigenvalues of the
+//! Where the dynamic model's stiffness sits: the eigenvalues of the
 //! right-hand side's Jacobian on a settled state, each assigned to the group of degrees of
 //! freedom its eigenvector lives in, and the largest step each group allows the default
 //! integrator (Dormand–Prince 5(4): |R(h λ)| ≤ 1 with R(z) = Σ_{k≤5} z^k/k! + z^6/600, the

@@ -218,7 +218,7 @@ pub struct FrictionModel {
     cache: SpeedCache,
     /// Solve the thermal Eyring film equation by Halley's method (fidelity 0); Newton's, as
     /// the dynamic model does, for the quasi-static start of the dynamic model (its outputs
-    /// bit for bit as before).
+    /// keep Newton's bits).
     halley: bool,
     /// Read the friction table four slices at a time (the CPU has AVX2), else two.
     four_lanes: bool,

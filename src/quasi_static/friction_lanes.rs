@@ -26,7 +26,7 @@ pub(super) fn raceway_tabulated_lanes(
     // `TableRead::friction`)
     assert!(2 * (first + loads.len()) * LOAD_GRID_NODES <= table.flat().len(), "friction table shorter than its lines");
     // first every group's place on the grid, then the reads: the logarithms (a division each)
-    // are independent of one another, and the reads' loads no longer wait on them inside one
+    // are independent of one another, and the reads' loads do not wait on them inside one
     // long loop body (TRB130x230 at constant load: 6 % less time per doStep on Zen 3)
     let mut grid = [F::splat(0.0); GRID_GROUPS];
     let precomputed = loads.len() <= GRID_GROUPS * F::N;

@@ -268,7 +268,7 @@ struct SliceTable {
     /// Number of slices (the arrays may be up to three longer).
     n: usize,
     /// Use the two-lane kernel (`simd.rs`). Not for the quasi-static start of the dynamic
-    /// model: the scalar loop gives that start bit for bit as before the kernel existed.
+    /// model: that start keeps the scalar loop's bits.
     vector: bool,
     /// Run that kernel four slices at a time (the CPU has AVX2; the same bits as two).
     four_lanes: bool,
@@ -1726,8 +1726,8 @@ impl QuasiStatic {
         out.solver_residual = report.residual;
         // Friction torque, power loss and the skew moments of the traction forces.
         // The slice loads of the last evaluation, which was at the solution `x`; for the start
-        // of the dynamic model recomputed as before the loads were kept (the interference
-        // summed in another order: its outputs bit for bit as before).
+        // of the dynamic model recomputed by `slice_loads` at `x` (the interference summed in its
+        // order, which fixes the start's outputs to the bit).
         let evaluated = if self.axisymmetric { 1 } else { self.geometry.z };
         if !self.cone_table.vector {
             let ns = self.geometry.slices;

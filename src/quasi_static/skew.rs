@@ -49,9 +49,9 @@
 //! speed across the contact width in the rolling direction: the slice's kinematic sliding plus
 //! the Heathcote microslip of a freely rolling line contact, integrated with Simpson's rule over
 //! the Hertz pressure) and of the Eq. (7) thrust mu q |sin phi| against the skewed roller's
-//! axial sliding v |sin phi| (the power of the force the model applies; until 2026-11-24 the
-//! axial sliding entered the Coulomb integral at full mu, 12 times the thrust at the pocket
-//! limit, and the raceway torque jumped where the rollers reached it), end-rib sliding (Karna: Coulomb
+//! axial sliding v |sin phi| (the power of the force the model applies; the axial sliding in
+//! the Coulomb integral at full mu would be 12 times the thrust at the pocket limit and make
+//! the raceway torque jump where the rollers reach it), end-rib sliding (Karna: Coulomb
 //! force times the sliding speed at the rib contact) and roller-cage sliding (mu F_c at each
 //! corner times the roller surface speed there).
 

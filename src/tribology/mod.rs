@@ -294,8 +294,6 @@ pub fn traction_mu(lambda: f64, slide_roll: f64, mu_full_film: f64) -> f64 {
 /// Both surfaces feel it, so the contact dissipates 2 F u (the inlet's Poiseuille flow;
 /// checked against a numerical EHL solution in `ehl_line.rs`: the fully flooded isothermal
 /// force is 1.6 times this regression, which Zhou & Hoeprich fitted to a shorter inlet).
-/// Until 2026-11-24 the product used F = (4.318 / alpha) (G U)^0.658 W^0.3635 R l, a mix of
-/// Goksem & Hargreaves' constants with a load exponent from neither source: 24 times lower.
 pub fn rolling_resistance(eta0: f64, alpha: f64, e_prime: f64, u: f64, r_bar: f64, q: f64, l: f64) -> f64 {
     if u <= 0.0 || q <= 0.0 || alpha <= 0.0 || l <= 0.0 {
         return 0.0;

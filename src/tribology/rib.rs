@@ -10,7 +10,7 @@
 //! over the Hertz ellipse, p = p_h sqrt(1 - x^2/a^2 - y^2/b^2) (the law at each pressure,
 //! with its limiting shear and heating; Newtonian where pressure and shear are low).
 //!
-//! `traction` = 1 (the laws before 2026-11-24): asperity share mu0 exp(-1.8 Lambda^1.2) of
+//! `traction` = 1 (the isothermal laws, kept for comparison with the studies): asperity share mu0 exp(-1.8 Lambda^1.2) of
 //! the load [L22] plus the viscous film traction of [W25], tau = eta(p) v_s / h at the
 //! Roelands viscosity (z = 0.4), capped at 0.08 p.
 

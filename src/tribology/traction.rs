@@ -34,7 +34,7 @@
 //!   Lambda 0.03-0.1 measured for lubricants; `oil.limitingShear`), a smooth minimum
 //!   tau tau_L / (tau^4 + tau_L^4)^(1/4).
 //!
-//! 1 — Newtonian Eyring (the law before 2026-11-24; isothermal): Eyring at the Roelands
+//! 1 — Newtonian Eyring (isothermal, kept for comparison with the studies): Eyring at the Roelands
 //! viscosity (z = 0.4) of the mean pressure, capped smoothly at 0.08 p, with its fixed
 //! constants (`tribology::full_film_mu`, `EYRING_STRESS`, `LIMITING_SHEAR`).
 //!

@@ -1,4 +1,4 @@
-"""Robustness through a real importer (issue 6): fmpy's `simulate_fmu` drives the FMU with
+"""Robustness through a real importer: fmpy's `simulate_fmu` drives the FMU with
 time tables that a system model produces -- a run-up from rest, a sudden stop, a reversal
 through zero, load steps and a shaft deflection ramp -- with communication steps from 1e-5 to
 0.05 s. Every output stays finite, the energy balance holds (powerLoss = frictionTorque x
@@ -55,8 +55,8 @@ def test_time_tables_through_fmpy_stay_finite_and_balanced(fmu_path, name):
 
 
 def test_an_input_beyond_the_range_stops_the_run_with_a_message_not_nan(fmu_path):
-    """speed = 1e300 rad/s used to give NaN outputs from a successful step (fixed: the input
-    is refused, naming it)."""
+    """speed = 1e300 rad/s is refused, naming the input, rather than giving NaN outputs from a
+    successful step."""
     rows = [(0, N, 30e3, 20e3, 0), (0.01, N, 30e3, 20e3, 0), (0.0101, 1e300, 30e3, 20e3, 0), (0.02, 1e300, 30e3, 20e3, 0)]
     messages = []
 

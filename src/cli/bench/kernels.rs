@@ -1,4 +1,4 @@
-//! Timed kernels of the targets table of issue 5: one right-hand-side evaluation of the
+//! Timed kernels of the targets table: one right-hand-side evaluation of the
 //! dynamic model, one quasi-static doStep, and the FMI adapter's bookkeeping per doStep
 //! (fmi2DoStep through the C ABI minus `Simulation::do_step` on an identical element).
 //! Each is the median over samples of many calls (criterion measures the same kernels in

@@ -5,7 +5,7 @@
 //! divided by the root-mean-square of the reference signal (or by a floor for outputs that
 //! are nearly zero in a case, such as the tilting moments under pure axial load). A run's
 //! error is the largest over [`OUTPUTS`]; its torque/skew error the largest over friction
-//! torque, mean skew and roller 1's skew (the targets of issue 5 name those two).
+//! torque, mean skew and roller 1's skew (the targets name those two).
 
 use crate::cli::scenario::{Scenario, Value, Var};
 use crate::cli::simulate::{prepare, step};

@@ -1,4 +1,4 @@
-//! The numerical stress matrix of issue 6: hundreds of operating cases per fidelity, each run
+//! The numerical stress matrix: hundreds of operating cases per fidelity, each run
 //! through [`Simulation`] (the code the FMU runs) and, for a representative subset, through
 //! the FMU's C ABI as well, with every output checked after every step.
 //!
@@ -18,7 +18,7 @@
 //! - [`Expect::Refuse`]: outside the model's validity range: it must be refused, saying why.
 //!
 //! Fidelity 1 cases are the same list with `fidelity = 1` set and durations of their own
-//! ([`Durations`]); until the dynamic model exists they are reported as not available.
+//! ([`Durations`]); in a build without the dynamic model they are reported as not available.
 //!
 //! # Checks after every successful step
 //!

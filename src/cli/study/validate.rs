@@ -1,5 +1,5 @@
 //! `trb study validate [--quick]`: where the product meets the papers and an independent
-//! model, number by number (project issue 12, item 5). Writes `docs/validation.md`:
+//! model, number by number. Writes `docs/validation.md`:
 //!
 //! 1. [W25]: every number its text states (Figs. 6, 7, 10, 11), its stated trends and the
 //!    measured skew range it cites, against the dynamic model (fidelity 1) run on the
