@@ -2,8 +2,8 @@
 
 - The README's fmpy example runs as written and prints what the README says it prints.
 - Every relative link of the README and of the docs resolves to a file of the repository.
-- No tracked file narrates how the product was made: no numbered work periods, no issue
-  numbers, no names of who did the work (history lives in the git log and CHANGELOG.md).
+- No tracked file narrates how the product was made: no numbered stages of its making, no
+  issue numbers, no names of who did the work (history lives in the git log and CHANGELOG.md).
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@
 //! 7. in plain words, where the product differs and where that is documented.
 //!
 //! Every lubricated product number is given for both `traction` laws (0 thermal Eyring, the
-//! default; 1 the isothermal Newtonian–Eyring law of the product before 2026-11-24), set
+//! default; 1 the isothermal Newtonian–Eyring law, kept for comparison with the studies), set
 //! through the FMU parameter exactly as a scenario file sets it. The cases are the shipped
 //! ones: the [W25] runs go through `w25::run_case` with a [`Variant`]; the quasi-static
 //! cases are the shipped scenario files with the FMU parameters and inputs of the case
@@ -2546,7 +2546,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
          their stated trends as yes/no rows with the product's numbers, and the friction torque against the SKF \
          frictional-moment model. Each lubricated number is given for both values of the FMU parameter `traction`: \
          **0** the thermal Eyring film with elastic entry and limiting shear (the default), **1** the isothermal \
-         Newtonian–Eyring law (the product's laws before 2026-11-24); it is set as a scenario file sets it. Cases are \
+         Newtonian–Eyring law (kept for comparison with the studies); it is set as a scenario file sets it. Cases are \
          the shipped scenarios (`scenarios/`), changed only where a study's case needs it (the change is named).\n\n\
          Run: {}, commit {}, {}; {} mode, {:.0} s wall time.\n\n",
         if quick { " --quick" } else { "" },
