@@ -901,6 +901,66 @@ mod tests {
         }
     }
 
+    /// Starvation of the line contact by its inlet meniscus (Wolveridge, Baglin & Archard's
+    /// setting: p = 0 at a meniscus `x_in` half-widths upstream), the check of the raceways'
+    /// starved-film law (`tribology::supply`). The layer that reaches the contact is the oil the
+    /// film passes, rho h at the pressure peak (where dp/dx = 0 and the flow is all Couette),
+    /// over the flooded contact's: r. At 2.4 and 16 m/s:
+    /// - the film is min(r, 1) of the flooded one within 2.5 %, and the law with the raceways'
+    ///   exponent within 2 %: a line contact passes its layer through until it is flooded;
+    /// - the rolling force falls long before the film: wherever the film is still within 2.5 % of
+    ///   the flooded one, the rolling force is already down to 0.71-0.96 of it (the product
+    ///   therefore takes SKF's replenishment factor for the rolling resistance, not the film's).
+    #[test]
+    fn the_starved_line_contact_follows_the_layer_law() {
+        use crate::tribology::supply::{starved_film, GAMMA_RACEWAY};
+        for u in [2.4, 16.0] {
+            let op = reference(u, ViscosityModel::Barus);
+            let mut flooded = None;
+            let mut rolling_cut = false;
+            for x_in in [-20.0, -5.0, -3.5, -2.5, -2.0, -1.7, -1.5, -1.35, -1.25, -1.15, -1.08] {
+                let grid = if x_in < -1.7 {
+                    GridSpec {
+                        n: 600,
+                        x_in,
+                        ..GridSpec::default()
+                    }
+                } else {
+                    GridSpec {
+                        n: 600,
+                        x_in,
+                        x_fine: x_in + 0.02,
+                        fine_fraction: 0.95,
+                        ..GridSpec::default()
+                    }
+                };
+                let s = solve(
+                    &op,
+                    &SolverSpec {
+                        grid,
+                        ..SolverSpec::default()
+                    },
+                )
+                .expect("solve");
+                let k = (0..s.p.len()).max_by(|a, b| s.p[*a].total_cmp(&s.p[*b])).unwrap();
+                let (rho, _) = density(true, 1.0, s.p[k]);
+                let passed = rho * s.h[k];
+                let (h_ff, passed_ff, f_ff) = *flooded.get_or_insert((s.h_c, passed, s.rolling_force_flooded()));
+                let (r, film, force) = (passed / passed_ff, s.h_c / h_ff, s.rolling_force / f_ff);
+                let law = starved_film(r, GAMMA_RACEWAY);
+                println!("{u} m/s, meniscus at {x_in} b: r {r:.4}, film {film:.4} (law {law:.4}), rolling force {force:.4}");
+                assert!((film - r.min(1.0)).abs() < 0.025, "{u} m/s, {x_in}: film {film}, layer {r}");
+                assert!((film - law).abs() < 0.02, "{u} m/s, {x_in}: film {film}, law {law}");
+                assert!(force < film + 1e-9, "the rolling force falls first");
+                if film > 0.975 && x_in > -19.0 {
+                    assert!(force < 0.96, "{u} m/s, {x_in}: rolling force {force} at film {film}");
+                    rolling_cut = true;
+                }
+            }
+            assert!(rolling_cut);
+        }
+    }
+
     #[test]
     fn kernel_reproduces_hertz_flat_film() {
         // the Hertz semi-ellipse makes X^2/2 + V(X) constant inside the contact

@@ -32,8 +32,9 @@ fn outputs(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f
 
 /// Both film ratios rise continuously and monotonically with the inlet layer and reach the
 /// flooded ones; with a layer far above the flooded film every output is the flooded
-/// element's, bit for bit, at both fidelities. A starved supply's own layer thins both films,
-/// the rib's (a compact contact) more than the raceways'.
+/// element's but for the rolling resistance's replenishment, and with a flooded supply bit for
+/// bit, at both fidelities. Grease's own layer halves the raceway films and thins the rib's
+/// (a compact contact) more.
 #[test]
 fn the_starved_films_tend_to_the_flooded_ones() {
     for name in ["32008", "TRB130x230"] {
@@ -44,7 +45,12 @@ fn the_starved_films_tend_to_the_flooded_ones() {
             let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
             let (race, rib) = (o.film_ratio_raceway, o.film_ratio_flange);
             eprintln!("{name}, level {level}: film ratio raceway {race:.4}, rib {rib:.4}");
-            assert!(race > last.0 && rib > last.1, "{name}: level {level}: {race}, {rib} after {last:?}");
+            // (the raceway film, a line contact, reaches the flooded one at about r = 1.5)
+            assert!(
+                race >= last.0 && rib > last.1,
+                "{name}: level {level}: {race}, {rib} after {last:?}"
+            );
+            assert!(level > 1.5 || race > last.0, "{name}: level {level}: {race} after {}", last.0);
             assert!(race <= flooded.film_ratio_raceway * (1.0 + 1e-9) && rib <= flooded.film_ratio_flange * (1.0 + 1e-9));
             last = (race, rib);
         }
@@ -54,21 +60,31 @@ fn the_starved_films_tend_to_the_flooded_ones() {
         let (a, c) = (near(0.7), near(0.7 * (1.0 + 1e-6)));
         assert!((c.film_ratio_raceway / a.film_ratio_raceway - 1.0).abs() < 1.5e-6);
         assert!((c.film_ratio_flange / a.film_ratio_flange - 1.0).abs() < 1.5e-6);
-        // the flooded element, bit for bit, under a layer of 1e6 flooded films
+        // a layer of 1e6 flooded films gives the flooded films, bit for bit
         let thick = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, 1e6)]);
-        assert_eq!(thick, flooded, "{name}: a thick layer is the flooded supply");
-        // the supply's own layer
+        assert_eq!(thick.film_ratio_raceway.to_bits(), flooded.film_ratio_raceway.to_bits());
+        assert_eq!(thick.film_ratio_flange.to_bits(), flooded.film_ratio_flange.to_bits());
+        // the supplies' own layers: grease runs on half the flooded film (the rib on less),
+        // an oil bath, a jet and oil-air on full films
         for supply in [1, 2, 3] {
             let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, supply)], &[]);
             let race = o.film_ratio_raceway / flooded.film_ratio_raceway;
             let rib = o.film_ratio_flange / flooded.film_ratio_flange;
             eprintln!("{name}, supply {supply}: raceway film x {race:.3}, rib film x {rib:.3}");
-            assert!(race < 1.0 && rib < race && rib > 0.5, "{name}, supply {supply}: {race}, {rib}");
+            if supply == 2 {
+                assert!(
+                    (race - 0.5).abs() < 1e-9 && rib < race && rib > 0.45,
+                    "{name}, grease: {race}, {rib}"
+                );
+            } else {
+                assert!(race == 1.0 && rib == 1.0, "{name}, supply {supply}: {race}, {rib}");
+            }
             // ISO 281's viscosity ratio takes the oil's (for grease the base oil's) viscosity
             assert_eq!(o.oil_kappa.to_bits(), flooded.oil_kappa.to_bits());
         }
     }
-    // the dynamic model: the same bits for a thick layer and flooded, over two steps
+    // the dynamic model: a thick layer gives the flooded films (the rolling resistance keeps
+    // the supply's replenishment)
     let b = Bearing::preset("32008").unwrap();
     let run = |reals: &[(u32, f64)], supply: i32| {
         let mut s = element(&b, 1500.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], reals);
@@ -76,17 +92,44 @@ fn the_starved_films_tend_to_the_flooded_ones() {
         s.do_step(1e-3, 1e-3).unwrap();
         s.outputs().unwrap().clone()
     };
-    assert_eq!(run(&[(var::SUPPLY_LEVEL, 1e6)], 2), run(&[], 0));
+    let (thick, flooded) = (run(&[(var::SUPPLY_LEVEL, 1e6)], 2), run(&[], 0));
+    assert!((thick.film_ratio_flange / flooded.film_ratio_flange - 1.0).abs() < 1e-3);
+    assert!(thick.friction_torque < flooded.friction_torque);
+}
+
+/// `supply` = 0 (the default) is the element as it was before the supply existed, bit for bit:
+/// the scenarios of `tests/fixtures/flooded/` (the default bearing quasi-static under load and
+/// deflection ramps; a user's 30206 dynamic under combined load) print exactly the CSV files
+/// that the element wrote before the parameter was added.
+#[test]
+fn the_flooded_supply_is_the_element_before_the_supply_bit_for_bit() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/flooded");
+    for case in ["quasi_static", "dynamic"] {
+        let out = std::env::temp_dir().join(format!("trb-flooded-{case}-{}.csv", std::process::id()));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_trb"))
+            .args(["simulate", &format!("{dir}/{case}.json"), "--quiet", "--out"])
+            .arg(&out)
+            .status()
+            .unwrap();
+        assert!(status.success(), "{case}");
+        let now = std::fs::read_to_string(&out).unwrap();
+        let before = std::fs::read_to_string(format!("{dir}/{case}.csv")).unwrap();
+        let _ = std::fs::remove_file(&out);
+        assert!(now == before, "{case}: the flooded element's results changed");
+    }
 }
 
 /// The friction torque against SKF's frictional-moment model (`trb::skf_friction`) with the
 /// same supply: SKF's K_rs for the supply (flooded: no starvation, phi_rs = 1) and the
 /// preset's oil (for grease, its base oil), for 32008 (as SKF 32008 X) and the default
 /// bearing (as SKF 32226), over speed and axial load.
-/// - What the supply changes follows SKF: the torque under each supply over the flooded
-///   torque is within ±10 % of SKF's ratio, at every point.
+/// - An oil bath, a jet and oil-air act on the rolling resistance alone, through SKF's
+///   replenishment factor: the torque under each over the flooded torque is within ±10 % of
+///   SKF's ratio, at every point. Grease also halves the films, which SKF's model does not
+///   do: at low speed the product's greased torque rises (the rib's film falls into the mixed
+///   regime) where SKF's falls, by up to 21 % of the flooded torque.
 /// - From 1500 rpm the torque is within ±30 % of SKF's in every supply.
-/// - At 500 rpm it is 0.52-0.74 of SKF's in every supply (measured 2026-11-28): the films are
+/// - At 500 rpm it is 0.52-0.88 of SKF's in every supply (measured 2026-11-28): the films are
 ///   mixed there (32008: rib film ratio 0.7-1.0), and the [W25] regime law gives the
 ///   asperities far less of the load than SKF's phi_bl weighting of mu_bl = 0.15 does
 ///   (docs/validation-notes.md, "Lubricant supply"). The bound below holds that state.
@@ -146,10 +189,13 @@ fn the_torque_follows_skf_in_every_supply() {
                     "{name}, supply {supply}, {n} rpm, Fa {} kN: {torque:.3} N m, SKF {reference:.3} N m ({ratio:.3}; the supply's effect over SKF's {effect:.3})",
                     fa * 1e-3
                 );
-                assert!(
-                    (effect - 1.0).abs() < 0.1,
-                    "{name}, supply {supply}, {n} rpm, {fa} N: effect {effect}"
-                );
+                if supply != 2 {
+                    // full films: the supply acts through SKF's replenishment alone
+                    assert!(
+                        (effect - 1.0).abs() < 0.1,
+                        "{name}, supply {supply}, {n} rpm, {fa} N: effect {effect}"
+                    );
+                }
                 let bounds = if n >= 1500.0 { 0.7..=1.3 } else { 0.5..=1.3 };
                 assert!(
                     bounds.contains(&ratio),
@@ -200,11 +246,11 @@ fn the_energy_books_close_under_every_supply() {
 /// Grease on the 32008 at fidelity 1 (10 ms from the steady start under pure axial load): the
 /// mean skew grows with the axial load at 500 and 3000 rpm, as measured in greased bearings
 /// (Zhao et al., J. Tribol. 148 (2026) 024301), and grease skews the rollers more than flooded
-/// oil at every point (its starved rib carries more friction). Measured 2026-11-28: 0.0030° to
-/// 0.014° from 2 to 8 kN at 500 rpm, 0.0028° to 0.016° at 3000 rpm, 7-35 % above flooded.
-/// The measured growth with speed shows at 8 kN only (0.014° to 0.016°; at 2 kN the skew falls
-/// by 7 %), and the measured magnitude (0.15-0.6°) is not reached: the rib stays near full
-/// film (docs/validation-notes.md, "Lubricant supply").
+/// oil at every point (its starved rib carries more friction). Measured 2026-11-28: 0.0091° to
+/// 0.018° from 2 to 8 kN at 500 rpm, 0.0037° to 0.018° at 3000 rpm; flooded 0.0022-0.015°.
+/// The measured growth with speed is not reproduced (the greased film is a fixed fraction of
+/// the flooded one, so the rib is more mixed at low speed), nor the measured magnitude
+/// (0.15-0.6°): docs/validation-notes.md, "Lubricant supply".
 #[test]
 fn grease_skews_the_rollers_more_and_more_with_axial_load() {
     let b = Bearing::preset("32008").unwrap();
@@ -225,5 +271,4 @@ fn grease_skews_the_rollers_more_and_more_with_axial_load() {
             "{rpm} rpm: grease {light}, {heavy}; oil {light_oil}, {heavy_oil}"
         );
     }
-    assert!(skew(2, 3000.0, 8e3) > skew(2, 500.0, 8e3), "at 8 kN the skew grows with speed");
 }
