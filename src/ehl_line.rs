@@ -894,6 +894,13 @@ mod tests {
         }
     }
 
+    fn spec_on(grid: GridSpec) -> SolverSpec {
+        SolverSpec {
+            grid,
+            ..SolverSpec::default()
+        }
+    }
+
     fn spec(n: usize) -> SolverSpec {
         SolverSpec {
             grid: GridSpec::with_n(n),
@@ -934,14 +941,7 @@ mod tests {
                         ..GridSpec::default()
                     }
                 };
-                let s = solve(
-                    &op,
-                    &SolverSpec {
-                        grid,
-                        ..SolverSpec::default()
-                    },
-                )
-                .expect("solve");
+                let s = solve(&op, &spec_on(grid)).expect("solve");
                 let k = (0..s.p.len()).max_by(|a, b| s.p[*a].total_cmp(&s.p[*b])).unwrap();
                 let (rho, _) = density(true, 1.0, s.p[k]);
                 let passed = rho * s.h[k];
@@ -994,14 +994,7 @@ mod tests {
         let mut last_l1 = f64::INFINITY;
         for u in [0.1, 0.03, 0.01] {
             let op = reference(u, ViscosityModel::Roelands);
-            let s = solve(
-                &op,
-                &SolverSpec {
-                    grid,
-                    ..SolverSpec::default()
-                },
-            )
-            .expect("solve");
+            let s = solve(&op, &spec_on(grid)).expect("solve");
             let (b, p_h, lambda) = hertz_scales(&op);
             let wq = trapezoid_weights(&s.xd);
             let load: f64 = (0..s.xd.len()).map(|j| wq[j] * s.pd[j]).sum();

@@ -6,30 +6,49 @@
 use crate::variables::{Causality, VarType, Variability, Variable, TABLE};
 use std::fmt::Write as _;
 
-fn kind(v: &Variable) -> String {
-    let ty = match v.ty {
+/// The FMI type of a variable as modelDescription.xml declares it.
+pub fn type_name(v: &Variable) -> &'static str {
+    match v.ty {
         VarType::Real => "Real",
         VarType::Integer if v.enumeration.is_some() => "Enumeration",
         VarType::Integer => "Integer",
         VarType::Boolean => "Boolean",
-    };
-    let variability = match v.variability {
+    }
+}
+
+/// The FMI variability's name.
+pub fn variability_name(v: &Variable) -> &'static str {
+    match v.variability {
         Variability::Fixed => "fixed",
         Variability::Tunable => "tunable",
         Variability::Discrete => "discrete",
         Variability::Continuous => "continuous",
-    };
-    format!("{ty}, {variability}")
+    }
 }
 
-fn range(v: &Variable) -> String {
+/// The FMI causality's name.
+pub fn causality_name(c: Causality) -> &'static str {
+    match c {
+        Causality::Parameter => "parameter",
+        Causality::Input => "input",
+        Causality::Output => "output",
+    }
+}
+
+fn kind(v: &Variable) -> String {
+    format!("{}, {}", type_name(v), variability_name(v))
+}
+
+/// A variable's range as a reader reads it: an enumeration's items by value ("0 quasiStatic,
+/// 1 dynamic"), else "[min, max]", "≥ min" or "≤ max".
+pub fn range(v: &Variable) -> String {
     if let Some(e) = v.enumeration {
         let first = v.min.unwrap_or(0.0) as i64;
         return e
             .items
             .iter()
             .enumerate()
-            .map(|(k, (n, _))| format!("{} `{n}`", first + k as i64))
+            .map(|(k, (n, _))| format!("{} {n}", first + k as i64))
             .collect::<Vec<_>>()
             .join(", ");
     }
@@ -41,9 +60,9 @@ fn range(v: &Variable) -> String {
         }
     };
     match (v.min, v.max) {
-        (Some(a), Some(b)) => format!("{} … {}", f(a), f(b)),
-        (Some(a), None) => format!("≥ {}", f(a)),
-        (None, Some(b)) => format!("≤ {}", f(b)),
+        (Some(a), Some(b)) => format!("[{}, {}]", f(a), f(b)),
+        (Some(a), None) => format!("\u{2265} {}", f(a)),
+        (None, Some(b)) => format!("\u{2264} {}", f(b)),
         (None, None) => String::new(),
     }
 }

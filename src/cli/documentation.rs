@@ -9,7 +9,8 @@ use trb::bearing::{Bearing, ContactLaw, Kind, LubricationModel};
 use trb::model::ModelError;
 use trb::model_description::MODEL_IDENTIFIER;
 use trb::simulation::{AccessError, Simulation};
-use trb::variables::{self, Causality, VarType, Variability, Variable};
+use trb::variables::{self, Causality, Variable};
+use trb::variables_doc::{causality_name, range, type_name, variability_name};
 
 /// The four studies the model is written from (full citations as in MODEL.md).
 pub const SOURCES: &[(&str, &str)] = &[
@@ -571,59 +572,6 @@ fn write_tool_names(h: &mut String) {
         );
     }
     let _ = writeln!(h, "</table>");
-}
-
-fn type_name(v: &Variable) -> &'static str {
-    match v.ty {
-        VarType::Real => "Real",
-        VarType::Integer if v.enumeration.is_some() => "Enumeration",
-        VarType::Integer => "Integer",
-        VarType::Boolean => "Boolean",
-    }
-}
-
-fn variability_name(v: &Variable) -> &'static str {
-    match v.variability {
-        Variability::Fixed => "fixed",
-        Variability::Tunable => "tunable",
-        Variability::Discrete => "discrete",
-        Variability::Continuous => "continuous",
-    }
-}
-
-fn causality_name(c: Causality) -> &'static str {
-    match c {
-        Causality::Parameter => "parameter",
-        Causality::Input => "input",
-        Causality::Output => "output",
-    }
-}
-
-fn range(v: &Variable) -> String {
-    if let Some(e) = v.enumeration {
-        // the items by value: 0 quasiStatic, 1 dynamic
-        let first = v.min.unwrap_or(0.0) as i64;
-        let items: Vec<String> = e
-            .items
-            .iter()
-            .enumerate()
-            .map(|(k, (n, _))| format!("{} {n}", first + k as i64))
-            .collect();
-        return items.join(", ");
-    }
-    let f = |x: f64| {
-        if v.ty == VarType::Integer {
-            format!("{}", x as i64)
-        } else {
-            format!("{x:?}")
-        }
-    };
-    match (v.min, v.max) {
-        (Some(a), Some(b)) => format!("[{}, {}]", f(a), f(b)),
-        (Some(a), None) => format!("\u{2265} {}", f(a)),
-        (None, Some(b)) => format!("\u{2264} {}", f(b)),
-        (None, None) => String::new(),
-    }
 }
 
 fn write_variable_table(h: &mut String, z: usize, causality: Causality, starts: &HashMap<String, String>) {
