@@ -735,6 +735,10 @@ pub struct Outputs {
     pub life_l10m: f64,
     pub life_a_iso: f64,
     pub oil_kappa: f64,
+    /// Radial force of the bearing on its housing (N): the rollers' contact forces on the cup
+    /// and, with a dynamic cage, the cage land's, resolved on y and z. A rigid housing.
+    pub housing_fy: f64,
+    pub housing_fz: f64,
     /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
     pub stiffness: [f64; 25],
     /// The oil's dynamic viscosity at the current oil temperature (Pa s).
@@ -804,6 +808,8 @@ impl Outputs {
             life_l10m,
             life_a_iso,
             oil_kappa,
+            housing_fy,
+            housing_fz,
             stiffness,
             oil_viscosity,
             tilt_max,
@@ -863,6 +869,8 @@ impl Outputs {
         self.life_l10m.clone_from(life_l10m);
         self.life_a_iso.clone_from(life_a_iso);
         self.oil_kappa.clone_from(oil_kappa);
+        self.housing_fy.clone_from(housing_fy);
+        self.housing_fz.clone_from(housing_fz);
         self.stiffness.clone_from(stiffness);
         self.oil_viscosity.clone_from(oil_viscosity);
         self.tilt_max.clone_from(tilt_max);
@@ -962,6 +970,8 @@ impl Outputs {
             self.life_l10m,
             self.life_a_iso,
             self.oil_kappa,
+            self.housing_fy,
+            self.housing_fz,
             self.oil_viscosity,
             self.tilt_max,
             self.tilt_mean,

@@ -593,6 +593,8 @@ impl Simulation {
             var::PRESSURE_MAX => o.pressure_max,
             var::FILM_RATIO_RACEWAY => o.film_ratio_raceway,
             var::FILM_RATIO_FLANGE => o.film_ratio_flange,
+            var::HOUSING_FY => o.housing_fy,
+            var::HOUSING_FZ => o.housing_fz,
             var::LIFE_L10M => o.life_l10m,
             var::LIFE_A_ISO => o.life_a_iso,
             var::OIL_KAPPA => o.oil_kappa,

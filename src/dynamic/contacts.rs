@@ -1284,6 +1284,7 @@ fn evaluate_roller(
         f_cone: -(f_cone_r + f_fl),
         f_cage: -f_pk,
         m_cage: -((pos - f.cage_pos).cross(&f_pk) + m_pk)[0],
+        f_cup: -cup_sum.f,
         sliding: cone_sum.traction.norm() + cup_sum.traction.norm() + sliding_fl,
         // on the cone: its moment about the origin (the rollers' moment about their centre
         // of mass is -(m_cone_r + m_fl)) and about its own axis; on the cup (fixed): the
@@ -1430,6 +1431,7 @@ pub(crate) fn evaluate(
         tot.t_cone_raceway += rec.t_cone_raceway;
         tot.t_cone_flange += rec.t_cone_flange;
         tot.t_cup += rec.t_cup;
+        tot.f_cup += rec.f_cup;
         tot.f_cage += rec.f_cage;
         tot.m_cage += rec.m_cage;
         tot.p_raceway += rec.p_raceway;
@@ -1441,6 +1443,7 @@ pub(crate) fn evaluate(
     // cage land (dynamic cage on the cup land): short-bearing film with spin, whirl and
     // squeeze, evaluated at the critical gap at most; Hertz, damping and boundary friction
     // below it
+    let f_cage_rollers = tot.f_cage;
     if c.cage_dynamic {
         let land = &c.land;
         let e = V3::new(0.0, y[CAGE], y[CAGE + 1]);
@@ -1475,6 +1478,8 @@ pub(crate) fn evaluate(
             tot.m_cage -= c.mu_pocket * q * land.radius * land_rate.signum();
             tot.p_cage += c.mu_pocket * q * (land_rate * land.radius).abs();
         }
+        // the land's force on the cage comes from the cup
+        tot.f_cup -= tot.f_cage - f_cage_rollers;
     }
     if let Some(dy) = dy {
         // cone

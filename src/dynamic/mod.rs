@@ -114,6 +114,8 @@ pub(crate) struct RollerRecord {
     pub f_cone: V3,
     pub f_cage: V3,
     pub m_cage: f64,
+    /// Force of the roller on the cup (raceway).
+    pub f_cup: V3,
     /// Net sliding traction force on the roller: the magnitudes of the cone's and the cup's
     /// net tangential slice forces and of the rib's friction force, added.
     pub sliding: f64,
@@ -149,6 +151,8 @@ pub(crate) struct Totals {
     pub t_cone_flange: f64,
     /// Moment of the roller contacts on the cup about the bearing axis.
     pub t_cup: f64,
+    /// Force of the rollers and the cage land on the cup.
+    pub f_cup: V3,
     pub extrapolated: bool,
 }
 
@@ -567,6 +571,7 @@ impl Dynamic {
         out.reaction_mz = -totals.m_cone[2];
         out.reaction_fy = -totals.f_cone[1];
         out.reaction_fz = -totals.f_cone[2];
+        (out.housing_fy, out.housing_fz) = (totals.f_cup[1], totals.f_cup[2]);
         out.rating_c = self.rating.c_r;
         let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
         out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);

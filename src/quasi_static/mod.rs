@@ -1696,6 +1696,9 @@ impl QuasiStatic {
     fn write_outputs(&mut self, x: &[f64], inputs: &Inputs, report: SolveReport, speed_held: bool, out: &mut Outputs) {
         let z = self.geometry.z;
         let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        // the cup contact's load acts along the cup raceway's normal, outwards at cos(a_o)
+        let cup_radial = libm::cos(self.geometry.cup_angle);
+        let (mut housing_fy, mut housing_fz) = (0.0, 0.0);
         for j in 0..z {
             let e = &self.evals[j];
             let st = &self.setup[j];
@@ -1705,6 +1708,8 @@ impl QuasiStatic {
             fx -= e.f_cone[0];
             fy -= e.f_cone[1] * st.cos_psi;
             fz -= e.f_cone[1] * st.sin_psi;
+            housing_fy += e.qo * cup_radial * st.cos_psi;
+            housing_fz += e.qo * cup_radial * st.sin_psi;
             out.qi[j] = e.qi;
             out.qo[j] = e.qo;
             out.qf[j] = e.qf;
@@ -1758,6 +1763,7 @@ impl QuasiStatic {
         // (frame-independent; zero when the rings turn together).
         out.power_loss = out.friction_torque * inputs.relative_speed();
         self.write_reactions_and_lives(fy, fz, evaluated, inputs, out);
+        (out.housing_fy, out.housing_fz) = (housing_fy, housing_fz);
         out.stiffness = self.tangent_stiffness(x);
         out.summarize();
     }
