@@ -290,8 +290,6 @@ impl FrictionModel {
         }
     }
 
-    /// Whether [`FrictionModel::evaluate`] needs the converged slice loads (`traction` = 0
-    /// with EHL: the traction law is evaluated slice by slice).
     /// The film ratio Λ = h / σ of the rib contact of geometry `g` carrying load `qf` at cone
     /// speed `speed` relative to the cup, as the rib's friction law takes it: with `traction`
     /// 0 the film reduced by inlet shear heating over the roller end / rib roughness, with 1
@@ -306,7 +304,7 @@ impl FrictionModel {
         }
         let kin = self.flange;
         let u_e = speed.abs() * kin.entrain;
-        let h = self.rib_film(g, f, u_e, qf, speed);
+        let h = self.rib_film(g, f, u_e, qf, self.supply.starvation(speed).rib);
         match self.traction {
             tr::TractionLaw::ThermalEyring => {
                 let (_, _, p_h) = f.hertz.ellipse(qf);
@@ -346,11 +344,13 @@ impl FrictionModel {
     }
 
     /// The rib film at entrainment speed `u_e` and load `q`: Chittenden's flooded film of the
-    /// roller end on rib `f`, starved as the supply leaves it at cone speed `speed`.
-    fn rib_film(&self, g: &Geometry, f: &crate::geometry::FlangeContact, u_e: f64, q: f64, speed: f64) -> f64 {
-        tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q) * self.supply.starvation(speed).rib
+    /// roller end on rib `f`, times the supply's starvation factor `starved` of the rib.
+    fn rib_film(&self, g: &Geometry, f: &crate::geometry::FlangeContact, u_e: f64, q: f64, starved: f64) -> f64 {
+        tr::film_point(self.eta0, self.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q) * starved
     }
 
+    /// Whether [`FrictionModel::evaluate`] needs the converged slice loads (`traction` = 0
+    /// with EHL: the traction law is evaluated slice by slice).
     pub fn needs_slice_loads(&self, lubrication: Lubrication) -> bool {
         lubrication == Lubrication::Ehl && self.traction == tr::TractionLaw::ThermalEyring
     }
@@ -655,6 +655,7 @@ impl FrictionModel {
         loads: &[f64],
         speed: f64,
         lubrication: Lubrication,
+        starved: &tr::Starvation,
     ) -> RacewayFriction {
         if s.q <= 0.0 {
             return RacewayFriction::default();
@@ -677,7 +678,6 @@ impl FrictionModel {
                 let l = s.loaded as f64 * self.slice_len;
                 let w = s.q / l;
                 let u_e = speed.abs() * line.mid.entrain;
-                let starved = self.supply.starvation(speed);
                 let h = tr::film_line(self.eta0, self.alpha, e_prime, u_e, line.r_bar, w) * starved.raceway;
                 let lambda = if self.sigma > 0.0 { h / self.sigma } else { f64::INFINITY };
                 let slide_roll = if line.mid.entrain > 0.0 { slide / line.mid.entrain } else { 0.0 };
@@ -742,6 +742,8 @@ impl FrictionModel {
             cache.raceways.reset(2 * ns);
             cache.flange.reset(1);
         }
+        // the supply's starvation at this speed, for the rib and the mean-line raceway law
+        let starved = self.supply.starvation(speed);
         for (j, e) in evals.iter().enumerate().take(evaluated) {
             // slice_loads: per roller, the cone's slices then the cup's
             let loads = &slice_loads[2 * ns * j..2 * ns * (j + 1)];
@@ -788,8 +790,26 @@ impl FrictionModel {
                 }
             } else {
                 (
-                    self.raceway(g.e_prime, &self.cone, &self.cone_weights, &e.cone, &loads[..ns], speed, lubrication),
-                    self.raceway(g.e_prime, &self.cup, &self.cup_weights, &e.cup, &loads[ns..], speed, lubrication),
+                    self.raceway(
+                        g.e_prime,
+                        &self.cone,
+                        &self.cone_weights,
+                        &e.cone,
+                        &loads[..ns],
+                        speed,
+                        lubrication,
+                        &starved,
+                    ),
+                    self.raceway(
+                        g.e_prime,
+                        &self.cup,
+                        &self.cup_weights,
+                        &e.cup,
+                        &loads[ns..],
+                        speed,
+                        lubrication,
+                        &starved,
+                    ),
                 )
             };
             parts.raceway += cone.torque + cup.torque;
@@ -813,7 +833,7 @@ impl FrictionModel {
                         // table serves the friction force)
                         let film = || {
                             let (a, b, p_h) = f.hertz.ellipse(qf);
-                            (a, b, p_h, self.rib_film(g, f, u_e, qf, speed))
+                            (a, b, p_h, self.rib_film(g, f, u_e, qf, starved.rib))
                         };
                         match self.traction {
                             tr::TractionLaw::ThermalEyring => {
@@ -821,7 +841,7 @@ impl FrictionModel {
                                 if self.halley {
                                     let law = |q: f64| {
                                         let (a, b, p_h) = f.hertz.ellipse(q);
-                                        let h = self.rib_film(g, f, u_e, q, speed);
+                                        let h = self.rib_film(g, f, u_e, q, starved.rib);
                                         self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
                                     };
                                     // the table exists at this speed when the raceways' does
