@@ -127,7 +127,7 @@ pub struct Parameters {
     pub contamination_ec: f64,
     /// The lubricant supply (`supply`) and the inlet oil layer over the flooded film
     /// (`supply.level`; 0: the supply's own, `tribology::supply`).
-    #[serde(default = "flooded")]
+    #[serde(default)]
     pub supply: crate::tribology::Supply,
     #[serde(default)]
     pub supply_level: f64,
@@ -135,10 +135,6 @@ pub struct Parameters {
     /// [`Parameters::at_oil_temperature`] (0 before: `eta0` over the density at 15 degC).
     #[serde(skip)]
     pub oil_nu: f64,
-}
-
-fn flooded() -> crate::tribology::Supply {
-    crate::tribology::Supply::Flooded
 }
 
 fn yes() -> bool {

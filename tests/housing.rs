@@ -9,7 +9,8 @@
 //!   steps): mean 40 000.4 N, ripple ±12.7 N, peak at 437.6 Hz against 437.8 Hz of roller
 //!   passes.
 
-use trb::bearing::Bearing;
+mod common;
+
 use trb::simulation::Simulation;
 use trb::variables as var;
 
@@ -20,14 +21,8 @@ fn element(fidelity: i32, fy: f64) -> Simulation {
 }
 
 fn element_at(fidelity: i32, fx: f64, fy: f64) -> Simulation {
-    let b = Bearing::default_preset();
-    let mut s = Simulation::new(b);
-    s.set_integer(var::FIDELITY, fidelity).unwrap();
-    s.set_real(var::SPEED, 3500.0 * RPM).unwrap();
-    s.set_real(var::FX, fx).unwrap();
-    s.set_real(var::FY, fy).unwrap();
-    s.initialize(0.0).unwrap();
-    s
+    let reals = [(var::SPEED, 3500.0 * RPM), (var::FX, fx), (var::FY, fy)];
+    common::element("TRB130x230", &[(var::FIDELITY, fidelity)], &reals)
 }
 
 #[test]

@@ -3,6 +3,8 @@
 //! against SKF's frictional-moment model with the same supply, and the energy books of the
 //! dynamic model under every supply.
 
+mod common;
+
 use trb::bearing::Bearing;
 use trb::model::Outputs;
 use trb::simulation::Simulation;
@@ -10,24 +12,15 @@ use trb::variables as var;
 
 const RPM: f64 = std::f64::consts::PI / 30.0;
 
-/// The bearing's element at `rpm` and axial load `fa` with the integer parameters `ints` and
-/// real parameters `reals` set, initialised (fidelity 0 unless `ints` says otherwise).
-fn element(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Simulation {
-    let mut s = Simulation::new(b.clone());
-    for &(vr, v) in ints {
-        s.set_integer(vr, v).unwrap();
-    }
-    for &(vr, v) in reals {
-        s.set_real(vr, v).unwrap();
-    }
-    s.set_real(var::SPEED, rpm * RPM).unwrap();
-    s.set_real(var::FX, fa).unwrap();
-    s.initialize(0.0).unwrap();
-    s
+/// The element of preset `name` at `rpm` and axial load `fa` with the integer parameters `ints`
+/// and real parameters `reals` set, initialised (fidelity 0 unless `ints` says otherwise).
+fn element(name: &str, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Simulation {
+    let reals: Vec<(u32, f64)> = reals.iter().copied().chain([(var::SPEED, rpm * RPM), (var::FX, fa)]).collect();
+    common::element(name, ints, &reals)
 }
 
-fn outputs(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Outputs {
-    element(b, rpm, fa, ints, reals).outputs().unwrap().clone()
+fn outputs(name: &str, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Outputs {
+    element(name, rpm, fa, ints, reals).outputs().unwrap().clone()
 }
 
 /// Both film ratios rise continuously and monotonically with the inlet layer and reach the
@@ -38,11 +31,10 @@ fn outputs(b: &Bearing, rpm: f64, fa: f64, ints: &[(u32, i32)], reals: &[(u32, f
 #[test]
 fn the_starved_films_tend_to_the_flooded_ones() {
     for name in ["32008", "TRB130x230"] {
-        let b = Bearing::preset(name).unwrap();
-        let flooded = outputs(&b, 1500.0, 5e3, &[], &[]);
+        let flooded = outputs(name, 1500.0, 5e3, &[], &[]);
         let mut last = (0.0, 0.0);
         for level in [0.02, 0.05, 0.1, 0.2, 0.5, 0.9, 1.0, 1.1, 2.0, 5.0] {
-            let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
+            let o = outputs(name, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
             let (race, rib) = (o.film_ratio_raceway, o.film_ratio_flange);
             eprintln!("{name}, level {level}: film ratio raceway {race:.4}, rib {rib:.4}");
             // (the raceway film, a line contact, reaches the flooded one at about r = 1.5)
@@ -56,18 +48,18 @@ fn the_starved_films_tend_to_the_flooded_ones() {
         }
         // continuity: a relative step of 1e-6 in the layer moves the film ratios by less
         // than 1e-6 relative (the law's slope in r is below 1)
-        let near = |level: f64| outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
+        let near = |level: f64| outputs(name, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, level)]);
         let (a, c) = (near(0.7), near(0.7 * (1.0 + 1e-6)));
         assert!((c.film_ratio_raceway / a.film_ratio_raceway - 1.0).abs() < 1.5e-6);
         assert!((c.film_ratio_flange / a.film_ratio_flange - 1.0).abs() < 1.5e-6);
         // a layer of 1e6 flooded films gives the flooded films, bit for bit
-        let thick = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, 1e6)]);
+        let thick = outputs(name, 1500.0, 5e3, &[(var::SUPPLY, 2)], &[(var::SUPPLY_LEVEL, 1e6)]);
         assert_eq!(thick.film_ratio_raceway.to_bits(), flooded.film_ratio_raceway.to_bits());
         assert_eq!(thick.film_ratio_flange.to_bits(), flooded.film_ratio_flange.to_bits());
         // the supplies' own layers: grease runs on half the flooded film (the rib on less),
         // an oil bath, a jet and oil-air on full films
         for supply in [1, 2, 3] {
-            let o = outputs(&b, 1500.0, 5e3, &[(var::SUPPLY, supply)], &[]);
+            let o = outputs(name, 1500.0, 5e3, &[(var::SUPPLY, supply)], &[]);
             let race = o.film_ratio_raceway / flooded.film_ratio_raceway;
             let rib = o.film_ratio_flange / flooded.film_ratio_flange;
             eprintln!("{name}, supply {supply}: raceway film x {race:.3}, rib film x {rib:.3}");
@@ -85,9 +77,8 @@ fn the_starved_films_tend_to_the_flooded_ones() {
     }
     // the dynamic model: a thick layer gives the flooded films (the rolling resistance keeps
     // the supply's replenishment)
-    let b = Bearing::preset("32008").unwrap();
     let run = |reals: &[(u32, f64)], supply: i32| {
-        let mut s = element(&b, 1500.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], reals);
+        let mut s = element("32008", 1500.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], reals);
         s.do_step(0.0, 1e-3).unwrap();
         s.do_step(1e-3, 1e-3).unwrap();
         s.outputs().unwrap().clone()
@@ -178,7 +169,7 @@ fn the_torque_follows_skf_in_every_supply() {
                     k_rs: k,
                     ..skf::Lubrication::oil_bath(b.eta0, None)
                 };
-                let torque = outputs(&b, n, fa, &[(var::SUPPLY, supply as i32)], &[]).friction_torque;
+                let torque = outputs(name, n, fa, &[(var::SUPPLY, supply as i32)], &[]).friction_torque;
                 let reference = skf::frictional_moment(&bearing, &lub, n * RPM, 0.0, fa).total;
                 if supply == 0 {
                     flooded = (torque, reference);
@@ -214,9 +205,14 @@ fn the_torque_follows_skf_in_every_supply() {
 /// (trapezoid over 0.1 ms samples).
 #[test]
 fn the_energy_books_close_under_every_supply() {
-    let b = Bearing::preset("32008").unwrap();
     for supply in 0..4 {
-        let mut s = element(&b, 3000.0, 5e3, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], &[(var::FY, 3e3)]);
+        let mut s = element(
+            "32008",
+            3000.0,
+            5e3,
+            &[(var::FIDELITY, 1), (var::SUPPLY, supply)],
+            &[(var::FY, 3e3)],
+        );
         let speed = 3000.0 * RPM;
         let power = |s: &mut Simulation| {
             let o = s.outputs().unwrap();
@@ -253,9 +249,8 @@ fn the_energy_books_close_under_every_supply() {
 /// (0.15-0.6°): docs/validation-notes.md, "Lubricant supply".
 #[test]
 fn grease_skews_the_rollers_more_and_more_with_axial_load() {
-    let b = Bearing::preset("32008").unwrap();
     let skew = |supply: i32, rpm: f64, fa: f64| {
-        let mut s = element(&b, rpm, fa, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], &[]);
+        let mut s = element("32008", rpm, fa, &[(var::FIDELITY, 1), (var::SUPPLY, supply)], &[]);
         for k in 0..2 {
             s.do_step(k as f64 * 5e-3, 5e-3).unwrap();
         }

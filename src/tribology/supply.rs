@@ -39,9 +39,10 @@
 //! Flooded (`supply` = 0) returns factors of exactly 1: the model's arithmetic is unchanged.
 
 /// The lubricant supply of the bearing (parameter `supply`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Supply {
     /// Every inlet full of oil (circulating oil, a deep bath): no starvation.
+    #[default]
     Flooded = 0,
     /// Low-level oil bath or oil jet.
     OilBath = 1,

@@ -22,14 +22,24 @@ pub fn dynamic_element(integrator: i32, setting: f64, fy: f64) -> Simulation {
     s
 }
 
+/// An element of `preset` with the Integer parameters `ints` and then the Real inputs and
+/// parameters `reals` set (value reference, value), initialized at t = 0.
+#[allow(dead_code)] // not every test file that includes `common` uses it
+pub fn element(preset: &str, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Simulation {
+    let mut s = Simulation::new(Bearing::preset(preset).unwrap());
+    for &(vr, v) in ints {
+        s.set_integer(vr, v).unwrap();
+    }
+    for &(vr, v) in reals {
+        s.set_real(vr, v).unwrap();
+    }
+    s.initialize(0.0).unwrap();
+    s
+}
+
 /// Outputs of a quasi-static element of `preset` initialized with the given Real inputs and
 /// parameters (value reference, value).
 #[allow(dead_code)] // not every test file that includes `common` uses it
 pub fn solved(preset: &str, set: &[(u32, f64)]) -> trb::model::Outputs {
-    let mut s = Simulation::new(Bearing::preset(preset).unwrap());
-    for &(vr, v) in set {
-        s.set_real(vr, v).unwrap();
-    }
-    s.initialize(0.0).unwrap();
-    s.outputs().unwrap().clone()
+    element(preset, &[], set).outputs().unwrap().clone()
 }

@@ -31,7 +31,7 @@ pub const STEP: f64 = 1e-3;
 const RPM: f64 = std::f64::consts::PI / 30.0;
 
 /// What a soak run measured.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Soak {
     pub fidelity: i32,
     pub simulated: f64,
@@ -158,26 +158,6 @@ fn rel(a: f64, b: f64) -> f64 {
     }
 }
 
-fn fresh(fidelity: i32) -> Soak {
-    Soak {
-        fidelity,
-        simulated: 0.0,
-        wall: 0.0,
-        steps: 0,
-        rss_early: 0,
-        rss_end: 0,
-        shaft_work: 0.0,
-        dissipated: 0.0,
-        kinetic_change: 0.0,
-        load_work: 0.0,
-        repeat_error: 0.0,
-        repeat_points: 0,
-        torque_first: 0.0,
-        torque_last: 0.0,
-        failure: None,
-    }
-}
-
 /// The moment of the run after which memory must not grow: one minute, or a sixth of a
 /// shorter run.
 fn early(seconds: f64) -> f64 {
@@ -188,7 +168,7 @@ fn early(seconds: f64) -> f64 {
 pub fn fidelity_0(seconds: f64) -> Soak {
     let b = Bearing::default_preset();
     let mut s = Simulation::new(b);
-    let mut r = fresh(0);
+    let mut r = Soak::default();
     let n = (seconds / STEP).round() as usize;
     let samples_per_cycle = (CYCLE / STEP).round() as usize;
     // a sample every 0.1 s within the first cycle
@@ -247,7 +227,10 @@ pub fn fidelity_0(seconds: f64) -> Soak {
 pub fn fidelity_1(seconds: f64) -> Soak {
     let b = Bearing::default_preset();
     let mut s = Simulation::new(b);
-    let mut r = fresh(1);
+    let mut r = Soak {
+        fidelity: 1,
+        ..Soak::default()
+    };
     let n = (seconds / STEP).round() as usize;
     let (speed, fx, fy) = (3500.0 * RPM, 30e3, 10e3);
     let start = Instant::now();
