@@ -131,6 +131,10 @@ pub struct Parameters {
     pub supply: crate::tribology::Supply,
     #[serde(default)]
     pub supply_level: f64,
+    /// How the lubricated contacts share their friction between asperities and film
+    /// (`mixedLubrication`, `tribology::mixed`).
+    #[serde(default)]
+    pub mixed_lubrication: crate::tribology::MixedLaw,
     /// The oil's kinematic viscosity at its temperature (m2/s), set with `eta0` by
     /// [`Parameters::at_oil_temperature`] (0 before: `eta0` over the density at 15 degC).
     #[serde(skip)]
@@ -213,7 +217,14 @@ impl Parameters {
         } else {
             self.eta0 / self.oil_density
         };
-        crate::tribology::SupplyLaw::new(self.supply, self.supply_level, b.bore, b.outside_diameter, nu)
+        crate::tribology::SupplyLaw::new(
+            self.supply,
+            self.supply_level,
+            self.mixed_lubrication,
+            b.bore,
+            b.outside_diameter,
+            nu,
+        )
     }
 
     /// The oil's traction data as the traction laws take them.
@@ -297,6 +308,8 @@ impl Parameters {
             // every inlet full of oil, as [W25] and [L22] compute
             supply: crate::tribology::Supply::Flooded,
             supply_level: 0.0,
+            // each contact by its own film ratio, as [W25] computes
+            mixed_lubrication: crate::tribology::MixedLaw::FilmRatio,
             oil_nu: 0.0,
         }
     }

@@ -754,6 +754,7 @@ impl Simulation {
             var::TRACTION => p.traction as i32,
             var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
             var::SUPPLY => p.supply as i32,
+            var::MIXED_LUBRICATION => p.mixed_lubrication as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
             var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
@@ -795,6 +796,9 @@ impl Simulation {
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
             var::SUPPLY => p.supply = crate::tribology::Supply::from_index(value as i64).unwrap_or(p.supply),
+            var::MIXED_LUBRICATION => {
+                p.mixed_lubrication = crate::tribology::MixedLaw::from_index(value as i64).unwrap_or(p.mixed_lubrication)
+            }
             var::THREADS => p.threads = value.max(0) as u32,
             var::TRACTION => {
                 p.traction = if value == 0 {

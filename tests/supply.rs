@@ -126,6 +126,29 @@ fn the_flooded_supply_is_the_element_before_the_supply_bit_for_bit() {
 ///   (docs/validation-notes.md, "Lubricant supply"). The bound below holds that state.
 #[test]
 fn the_torque_follows_skf_in_every_supply() {
+    let worst = torque_over_skf(0, |n| if n >= 1500.0 { 0.7..=1.3 } else { 0.5..=1.3 });
+    eprintln!("torque over SKF's: {:.3} to {:.3}", worst.0, worst.1);
+}
+
+/// Under SKF's mixed law (`mixedLubrication` = 1: the asperities' share phi_bl of every
+/// contact, SKF's mu_bl = 0.15) the low-speed gap of the film-ratio law closes: at 500 rpm the
+/// torque is 0.70-1.40 of SKF's instead of 0.52-0.89, and from 1500 rpm it stays within ±30 %
+/// (0.75-1.06). Measured 2026-11-28: 44 of the 48 points within ±30 %; the four outside are
+/// the 32008 at 500 rpm and 8 kN, 1.35-1.40 in every supply. There the rib's sliding carries
+/// phi_bl = 0.25 of SKF's 0.15 at the rib's own load and lever arm, which is more than SKF's
+/// empirical sliding load G_sl = S_1 d_m^0.82 (F_r + S_2 Y F_a) gives; the raceways add
+/// nothing measurable (the same figures with the film-ratio law at the raceways).
+#[test]
+fn under_skfs_mixed_law_the_torque_follows_skf_at_every_speed() {
+    let worst = torque_over_skf(1, |n| if n >= 1500.0 { 0.7..=1.3 } else { 0.7..=1.45 });
+    eprintln!("torque over SKF's under SKF's mixed law: {:.3} to {:.3}", worst.0, worst.1);
+}
+
+/// The product's torque over SKF's frictional moment with the same supply, for the 32008 and
+/// TRB130x230 over speed, load and supply, under mixed law `mixed`; each ratio must lie in
+/// `bounds(speed in rpm)`, and each supply's effect over SKF's replenishment within ±10 %
+/// where the films stay full. The smallest and largest ratios.
+fn torque_over_skf(mixed: i32, bounds: impl Fn(f64) -> std::ops::RangeInclusive<f64>) -> (f64, f64) {
     use trb::skf_friction as skf;
     let cases = [
         (
@@ -169,16 +192,19 @@ fn the_torque_follows_skf_in_every_supply() {
                     k_rs: k,
                     ..skf::Lubrication::oil_bath(b.eta0, None)
                 };
-                let torque = outputs(name, n, fa, &[(var::SUPPLY, supply as i32)], &[]).friction_torque;
-                let reference = skf::frictional_moment(&bearing, &lub, n * RPM, 0.0, fa).total;
+                let ints = [(var::SUPPLY, supply as i32), (var::MIXED_LUBRICATION, mixed)];
+                let torque = outputs(name, n, fa, &ints, &[]).friction_torque;
+                let skf_moment = skf::frictional_moment(&bearing, &lub, n * RPM, 0.0, fa);
+                let reference = skf_moment.total;
                 if supply == 0 {
                     flooded = (torque, reference);
                 }
                 let ratio = torque / reference;
                 let effect = (torque / flooded.0) / (reference / flooded.1);
                 eprintln!(
-                    "{name}, supply {supply}, {n} rpm, Fa {} kN: {torque:.3} N m, SKF {reference:.3} N m ({ratio:.3}; the supply's effect over SKF's {effect:.3})",
-                    fa * 1e-3
+                    "{name}, mixed law {mixed}, supply {supply}, {n} rpm, Fa {} kN: {torque:.3} N m, SKF {reference:.3} N m ({ratio:.3}; the supply's effect over SKF's {effect:.3}; phi_bl {:.3})",
+                    fa * 1e-3,
+                    skf_moment.phi_bl
                 );
                 if supply != 2 {
                     // full films: the supply acts through SKF's replenishment alone
@@ -187,33 +213,41 @@ fn the_torque_follows_skf_in_every_supply() {
                         "{name}, supply {supply}, {n} rpm, {fa} N: effect {effect}"
                     );
                 }
-                let bounds = if n >= 1500.0 { 0.7..=1.3 } else { 0.5..=1.3 };
                 assert!(
-                    bounds.contains(&ratio),
+                    bounds(n).contains(&ratio),
                     "{name}, supply {supply}, {n} rpm, {fa} N: {torque} against {reference}"
                 );
                 worst = (worst.0.min(ratio), worst.1.max(ratio));
             }
         }
     }
-    eprintln!("torque over SKF's: {:.3} to {:.3}", worst.0, worst.1);
+    worst
 }
 
-/// Under every supply the dynamic model's energy books close: over 3 ms of the 32008 at
-/// 3000 rpm with a radial load (the rollers' spin and skew ring through the load zone), the
+/// Under every supply, and under both mixed laws, the dynamic model's energy books close:
+/// over 3 ms of the 32008 at 3000 rpm (500 rpm under SKF's mixed law) with a radial load (the rollers' spin and skew ring through the load zone), the
 /// work of the shaft equals the contacts' dissipation plus the change of kinetic energy
 /// (trapezoid over 0.1 ms samples).
 #[test]
 fn the_energy_books_close_under_every_supply() {
-    for supply in 0..4 {
+    // every supply under the film-ratio law; grease and flooded oil under SKF's at 500 rpm,
+    // where its asperities carry a quarter of every contact (phi_bl 0.25)
+    for (supply, mixed, rpm) in [
+        (0, 0, 3000.0),
+        (1, 0, 3000.0),
+        (2, 0, 3000.0),
+        (3, 0, 3000.0),
+        (0, 1, 500.0),
+        (2, 1, 500.0),
+    ] {
         let mut s = element(
             "32008",
-            3000.0,
+            rpm,
             5e3,
-            &[(var::FIDELITY, 1), (var::SUPPLY, supply)],
+            &[(var::FIDELITY, 1), (var::SUPPLY, supply), (var::MIXED_LUBRICATION, mixed)],
             &[(var::FY, 3e3)],
         );
-        let speed = 3000.0 * RPM;
+        let speed = rpm * RPM;
         let power = |s: &mut Simulation| {
             let o = s.outputs().unwrap();
             (o.friction_torque * speed, o.power_loss)
@@ -231,10 +265,12 @@ fn the_energy_books_close_under_every_supply() {
         }
         let dke = s.kinetic_energy() - ke0;
         let residual = e_in - e_loss - dke;
-        eprintln!("supply {supply}: shaft work {e_in:.5e} J, dissipated {e_loss:.5e} J, kinetic energy change {dke:.3e} J");
+        eprintln!(
+            "supply {supply}, mixed law {mixed}: shaft work {e_in:.5e} J, dissipated {e_loss:.5e} J, kinetic energy change {dke:.3e} J"
+        );
         assert!(
             residual.abs() < 0.02 * e_loss,
-            "supply {supply}: residual {residual} J of {e_loss} J"
+            "supply {supply}, mixed law {mixed}: residual {residual} J of {e_loss} J"
         );
     }
 }

@@ -443,7 +443,7 @@ fn slice_traction(c: &Constants, line: &LineConst, st: Starved, k: usize, q: f64
     if u_e < 1e-6 {
         // no rolling, no film: the boundary law at the floored entrainment speed
         let coef = if vs > 0.0 {
-            tr::boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs
+            st.mixed.boundary_mu(vs / MIN_BOUNDARY_ENTRAINMENT) * q / vs
         } else {
             0.0
         };
@@ -470,7 +470,7 @@ fn slice_traction(c: &Constants, line: &LineConst, st: Starved, k: usize, q: f64
                 let (h, ln_h) = (heating * fm::exp(ln_h_iso), ln_h_iso + fm::ln(heating));
                 let mu = c
                     .lubricant
-                    .raceway_mu_film(w, p_mean, h, ln_h, u_e, vs, ln_vs, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT));
+                    .raceway_mu_film(w, p_mean, h, ln_h, u_e, vs, ln_vs, vs / u_e.max(MIN_BOUNDARY_ENTRAINMENT), st.mixed);
                 mu * q / vs
             } else {
                 0.0
@@ -536,8 +536,8 @@ fn full_film_stress(c: &Constants, line: &LineConst, k: usize, w: f64, ln_h: f64
 
 /// Traction coefficient of the rib contact (force on the roller -coef v_t) for normal load
 /// `q`, sliding speed `vs` and entrainment speed `u_e` (`tribology::rib`).
-fn rib_traction_coef(c: &Constants, fl: &FlangeConst, starved: f64, q: f64, vs: f64, u_e: f64) -> f64 {
-    let h_iso = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q) * starved;
+fn rib_traction_coef(c: &Constants, fl: &FlangeConst, starved: Starved, q: f64, vs: f64, u_e: f64) -> f64 {
+    let h_iso = tr::film_point(c.eta0, c.alpha, c.e_prime, u_e, fl.hertz.ry, fl.hertz.rx, q) * starved.rib;
     let (ea, eb, ph) = fl.hertz.ellipse(q);
     match c.traction {
         tr::TractionLaw::NewtonianEyring => {
@@ -555,9 +555,12 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, starved: f64, q: f64, vs: 
                 } else {
                     tr::pair::rib_film_traction
                 };
-                return c.lubricant.rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, film) / vs;
+                return c
+                    .lubricant
+                    .rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed, film)
+                    / vs;
             }
-            c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph) / vs
+            c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed) / vs
         }
     }
 }
@@ -585,12 +588,14 @@ struct Race<'a> {
 
 /// The lubricant supply's starvation at the current speed, as the contact laws take it: ln of
 /// the raceway film's and the rolling couple's factors, and the rib film's factor
-/// (`tribology::supply`; 0, 0, 1 when flooded, which changes no bit).
+/// (`tribology::supply`; 0, 0, 1 when flooded, which changes no bit); and the mixed law at
+/// that speed (`tribology::mixed`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Starved {
     pub ln_film: f64,
     pub ln_roll: f64,
     pub rib: f64,
+    pub mixed: tr::Mixed,
 }
 
 impl Starved {
@@ -600,12 +605,14 @@ impl Starved {
                 ln_film: 0.0,
                 ln_roll: 0.0,
                 rib: 1.0,
+                mixed: tr::Mixed::FilmRatio,
             };
         }
         Starved {
             ln_film: libm::log(s.raceway),
             ln_roll: libm::log(s.rolling),
             rib: s.rib,
+            mixed: s.mixed,
         }
     }
 }
@@ -986,7 +993,7 @@ fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w
                     let v_point = V3::x().cross(&pk) * psid;
                     let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;
                     let u_e = (ue_vec - n * ue_vec.dot(&n)).norm();
-                    rib_traction_coef(c, fl, f.starved.rib, q, vs, u_e)
+                    rib_traction_coef(c, fl, f.starved, q, vs, u_e)
                 };
                 (-v_t * coef, coef * vs * vs)
             } else {

@@ -178,7 +178,7 @@ pub(super) fn slice_traction_lanes(c: &Constants, line: &LineConst, st: Starved,
     ok = ok & pair::exp_range(ln_h_iso);
     let (h, ln_h) = (heating * exp(ln_h_iso), ln_h_iso + ln(heating));
     let boundary_slide_roll = vs / u_e.max(F::splat(MIN_BOUNDARY_ENTRAINMENT));
-    let (mu, film_ok) = pair::raceway_mu_film(&c.lubricant, w, p_mean, h, ln_h, u_e, vs, ln_vs, boundary_slide_roll);
+    let (mu, film_ok) = pair::raceway_mu_film(&c.lubricant, w, p_mean, h, ln_h, u_e, vs, ln_vs, boundary_slide_roll, st.mixed);
     ok = ok & film_ok;
     let coef = mu * q / vs;
     let couple = if c.rolling_resistance {

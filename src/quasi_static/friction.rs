@@ -128,6 +128,8 @@ struct SliceConst {
     /// Largest load read from the friction table (`TABLE_PRESSURE`); above it the laws are
     /// evaluated directly.
     table_max: f64,
+    /// The mixed law at this speed (`tribology::mixed`).
+    mixed: tr::Mixed,
 }
 
 /// Hertz pressure up to which the slice laws are read from the table: beyond the 4 GPa of
@@ -376,6 +378,7 @@ impl FrictionModel {
                 } else {
                     0.0
                 },
+                mixed: starved.mixed,
                 ..SliceConst::default()
             };
             if u_e > 0.0 {
@@ -435,10 +438,10 @@ impl FrictionModel {
                 let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
                 if HALLEY {
                     self.lubricant
-                        .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                        .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll, c.mixed)
                 } else {
                     self.lubricant
-                        .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll)
+                        .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll, c.mixed)
                 }
             } else {
                 0.0
@@ -451,7 +454,11 @@ impl FrictionModel {
             (mu, rolling)
         } else {
             // no entrainment at this slice: no film, no rolling resistance
-            (self.lubricant.raceway_mu(w, p_mean, 0.0, 0.0, c.v_s, c.boundary_slide_roll), 0.0)
+            (
+                self.lubricant
+                    .raceway_mu(w, p_mean, 0.0, 0.0, c.v_s, c.boundary_slide_roll, c.mixed),
+                0.0,
+            )
         }
     }
 
@@ -627,7 +634,7 @@ impl FrictionModel {
             } else {
                 0.0
             };
-            let mu = self.lubricant.raceway_mu(w, p_mean, h_iso, u_e, v_s, slide_roll);
+            let mu = self.lubricant.raceway_mu(w, p_mean, h_iso, u_e, v_s, slide_roll, starved.mixed);
             let rolling = if u_e > 0.0 {
                 let p_h = 4.0 / std::f64::consts::PI * p_mean;
                 let heating = tr::thermal_reduction(self.lubricant.inlet_heating * u_e * u_e, p_h / e_prime, v_s / u_e);
@@ -842,7 +849,8 @@ impl FrictionModel {
                                     let law = |q: f64| {
                                         let (a, b, p_h) = f.hertz.ellipse(q);
                                         let h = self.rib_film(g, f, u_e, q, starved.rib);
-                                        self.lubricant.rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                        self.lubricant
+                                            .rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h, starved.mixed)
                                     };
                                     // the table exists at this speed when the raceways' does
                                     let read = (sliced && tabulate)
@@ -851,7 +859,8 @@ impl FrictionModel {
                                     read.map_or_else(|| law(qf), |v| fm::exp(v[0]) * qf)
                                 } else {
                                     let (a, b, p_h, h) = film();
-                                    self.lubricant.rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h)
+                                    self.lubricant
+                                        .rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h, starved.mixed)
                                 }
                             }
                             tr::TractionLaw::NewtonianEyring => {
@@ -1005,7 +1014,8 @@ mod tests {
                 let law = |q: f64| {
                     let (a, b, p_h) = f.hertz.ellipse(q);
                     let h = tr::film_point(fr.eta0, fr.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
-                    fr.lubricant.rib_force_halley(q, v_s, u_e, slide_roll, h, a, b, p_h)
+                    fr.lubricant
+                        .rib_force_halley(q, v_s, u_e, slide_roll, h, a, b, p_h, tr::Mixed::FilmRatio)
                 };
                 let mut table = LoadTable::default();
                 table.reset(1);

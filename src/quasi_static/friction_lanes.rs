@@ -192,7 +192,7 @@ impl SliceLaws for DirectLaws<'_> {
         let h = heating * (per(|c| c.film_a) * exp(-0.166 * ln_w_er));
         let ln_h = ln(h);
         let ln_vs = per(|c| c.ln_vs);
-        let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll));
+        let (mu, mut ok) = pair::raceway_mu_film(lub, w, p_mean, h, ln_h, u_e, v_s, ln_vs, per(|c| c.boundary_slide_roll), consts[idx[0]].mixed);
         ok = ok & pair::exp_range(-0.166 * ln_w_er);
         let rolls = group_lanes(&group.rolls, k).gt(zero);
         let ln_qr = ln(q / per(|c| c.e_r_l));

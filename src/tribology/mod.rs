@@ -8,6 +8,8 @@
 //!   with elastic entry and limiting shear (default), or the isothermal Newtonian Eyring law;
 //! - `pair.rs`: the raceway traction of two slices at once (x86-64, the dynamic model's);
 //! - `rib.rs`: the roller end on the rib: asperity and film shares from the film ratio;
+//! - `mixed.rs`: mixed lubrication, the asperities' share of a contact and their boundary
+//!   coefficient: by each contact's film ratio [W25], or by SKF's weighting phi_bl;
 //! - `supply.rs`: the lubricant supply: starved films and rolling resistance (Chevalier et al.
 //!   1998, Damiens et al. 2004, SKF's replenishment factor);
 //! - here: the boundary law of [W25] (Kragelskii), the [W25] sixth-power blend of the mixed
@@ -20,6 +22,7 @@
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod eyring_table;
 pub mod film;
+pub mod mixed;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod pair;
 pub mod rib;
@@ -28,6 +31,7 @@ pub mod traction;
 pub mod viscosity;
 
 pub use film::{film_line, film_line_fast, film_line_log_constant, film_point, thermal_reduction};
+pub use mixed::{Mixed, MixedLaw};
 pub use rib::{asperity_share, flange_boundary_mu, flange_viscous_traction, flange_viscous_traction_with, rib_film_traction};
 pub use supply::{Starvation, Supply, SupplyLaw};
 pub use traction::{FilmContact, Rheology, TractionLaw};
@@ -69,7 +73,7 @@ impl Lubricant {
     /// floors its entrainment speed, `MIN_BOUNDARY_ENTRAINMENT`; the quasi-static model takes
     /// the kinematic ratio, finite at standstill).
     #[inline]
-    pub fn raceway_mu(&self, w: f64, p_mean: f64, h_iso: f64, u_e: f64, v_s: f64, boundary_slide_roll: f64) -> f64 {
+    pub fn raceway_mu(&self, w: f64, p_mean: f64, h_iso: f64, u_e: f64, v_s: f64, boundary_slide_roll: f64, mixed: Mixed) -> f64 {
         if !(w > 0.0) {
             return 0.0;
         }
@@ -82,16 +86,27 @@ impl Lubricant {
         let h = heating * h_iso;
         let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
         let ln_vs = if v_s > 0.0 { fm::ln(v_s) } else { f64::NEG_INFINITY };
-        self.raceway_mu_film(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll)
+        self.raceway_mu_film(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, mixed)
     }
 
     /// [`Lubricant::raceway_mu`] with the film `h` already reduced by inlet heating, its
     /// logarithm `ln_h` and ln |v_s| `ln_vs` known (the dynamic model's slice loop).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub fn raceway_mu_film(&self, w: f64, p_mean: f64, h: f64, ln_h: f64, u_e: f64, v_s: f64, ln_vs: f64, boundary_slide_roll: f64) -> f64 {
+    pub fn raceway_mu_film(
+        &self,
+        w: f64,
+        p_mean: f64,
+        h: f64,
+        ln_h: f64,
+        u_e: f64,
+        v_s: f64,
+        ln_vs: f64,
+        boundary_slide_roll: f64,
+        mixed: Mixed,
+    ) -> f64 {
         let stress = traction::thermal_eyring_stress_ln;
-        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, stress)
+        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, mixed, stress)
     }
 
     /// [`Lubricant::raceway_mu_film`] with the film equation of the thermal Eyring law solved
@@ -109,9 +124,10 @@ impl Lubricant {
         v_s: f64,
         ln_vs: f64,
         boundary_slide_roll: f64,
+        mixed: Mixed,
     ) -> f64 {
         let stress = traction::thermal_eyring_stress_ln_halley;
-        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, stress)
+        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, mixed, stress)
     }
 
     /// The coefficient of [`Lubricant::raceway_mu_film`] with the film stress law `stress`.
@@ -127,9 +143,13 @@ impl Lubricant {
         v_s: f64,
         ln_vs: f64,
         boundary_slide_roll: f64,
+        mixed: Mixed,
         stress: fn(&Rheology, &FilmContact, f64, f64, f64) -> f64,
     ) -> f64 {
-        let share = if self.sigma > 0.0 { asperity_share(h / self.sigma) } else { 0.0 };
+        let share = match mixed {
+            Mixed::FilmRatio if !(self.sigma > 0.0) => 0.0,
+            _ => mixed.share(h / self.sigma),
+        };
         let film = if share < 1.0 && v_s > 0.0 {
             let contact = FilmContact {
                 pressure: p_mean,
@@ -142,7 +162,7 @@ impl Lubricant {
         } else {
             0.0
         };
-        let boundary = if share > 0.0 { boundary_mu(boundary_slide_roll) } else { 0.0 };
+        let boundary = if share > 0.0 { mixed.boundary_mu(boundary_slide_roll) } else { 0.0 };
         share * boundary + (1.0 - share) * film
     }
 
@@ -152,8 +172,19 @@ impl Lubricant {
     /// film ratio against the rib roughness (`rib.rs`); `boundary_slide_roll` as in
     /// [`Lubricant::raceway_mu`].
     #[allow(clippy::too_many_arguments)]
-    pub fn rib_force(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib_film_traction)
+    pub fn rib_force(
+        &self,
+        q: f64,
+        v_s: f64,
+        u_e: f64,
+        boundary_slide_roll: f64,
+        h_iso: f64,
+        a: f64,
+        b: f64,
+        p_h: f64,
+        mixed: Mixed,
+    ) -> f64 {
+        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, mixed, rib_film_traction)
     }
 
     /// The rib's film ratio Λ = h / σ_rib as [`Lubricant::rib_force`] takes it: the isothermal
@@ -179,8 +210,30 @@ impl Lubricant {
     /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
     /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
     #[allow(clippy::too_many_arguments)]
-    pub fn rib_force_halley(&self, q: f64, v_s: f64, u_e: f64, boundary_slide_roll: f64, h_iso: f64, a: f64, b: f64, p_h: f64) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, rib::rib_film_traction_halley)
+    pub fn rib_force_halley(
+        &self,
+        q: f64,
+        v_s: f64,
+        u_e: f64,
+        boundary_slide_roll: f64,
+        h_iso: f64,
+        a: f64,
+        b: f64,
+        p_h: f64,
+        mixed: Mixed,
+    ) -> f64 {
+        self.rib_force_with(
+            q,
+            v_s,
+            u_e,
+            boundary_slide_roll,
+            h_iso,
+            a,
+            b,
+            p_h,
+            mixed,
+            rib::rib_film_traction_halley,
+        )
     }
 
     /// [`Lubricant::rib_force`] with the rib film's force `film` (as `rib::rib_film_traction`).
@@ -196,19 +249,19 @@ impl Lubricant {
         a: f64,
         b: f64,
         p_h: f64,
+        mixed: Mixed,
         film: RibFilm,
     ) -> f64 {
         if !(q > 0.0) {
             return 0.0;
         }
         let h = self.rib_film(v_s, u_e, h_iso, p_h);
-        let share = if self.rib_sigma > 0.0 {
-            asperity_share(h / self.rib_sigma)
-        } else {
-            0.0
+        let share = match mixed {
+            Mixed::FilmRatio if !(self.rib_sigma > 0.0) => 0.0,
+            _ => mixed.share(h / self.rib_sigma),
         };
         let boundary = if share > 0.0 {
-            share * q * boundary_mu(boundary_slide_roll)
+            share * q * mixed.boundary_mu(boundary_slide_roll)
         } else {
             0.0
         };
@@ -367,10 +420,10 @@ mod tests {
         let heat = thermal_reduction(0.03 * 0.033 / 0.13 * ue * ue, ph / 2.181e11, s);
         let h = heat * h_iso;
         let film = rib_film_traction(&oil(0.0).rheology, &oil(0.0).viscosity, vs, h, ue, a, b, ph);
-        let force = |lambda: f64| oil(h / lambda).rib_force(q, vs, ue, s, h_iso, a, b, ph);
+        let force = |lambda: f64| oil(h / lambda).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio);
         // full film
         assert!((force(1.5) - film).abs() < 1e-12 * film && (force(6.0) - film).abs() < 1e-12 * film);
-        assert_eq!(oil(0.0).rib_force(q, vs, ue, s, h_iso, a, b, ph), film);
+        assert_eq!(oil(0.0).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio), film);
         // boundary
         let boundary = q * boundary_mu(s);
         assert!((force(0.009) - boundary).abs() < 1e-12 * boundary);

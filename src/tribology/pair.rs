@@ -24,7 +24,7 @@ use std::f64::consts::PI;
 /// The kernels in two lanes (SSE2, every x86-64 CPU).
 pub(crate) mod x2 {
     use super::super::traction::{Rheology, LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
-    use super::super::{film, rib, Lubricant, ViscosityTable};
+    use super::super::{film, rib, Lubricant, Mixed, ViscosityTable};
     use crate::simd_math::{exp, ln, F2 as F, M2 as M};
     include!("pair_lanes.rs");
 }
@@ -32,7 +32,7 @@ pub(crate) mod x2 {
 /// The kernels in four lanes (AVX2: only inside functions compiled for it, `simd_math::x4`).
 pub(crate) mod x4 {
     use super::super::traction::{Rheology, LN_MIN_FILM, STEEL_CONDUCTIVITY, STEEL_DIFFUSIVITY};
-    use super::super::{film, rib, Lubricant, ViscosityTable};
+    use super::super::{film, rib, Lubricant, Mixed, ViscosityTable};
     use crate::simd_math::x4::{exp, ln, F4 as F, M4 as M};
     include!("pair_lanes.rs");
 }

@@ -20,7 +20,7 @@ pub(crate) fn thermal_reduction_ln(ln_load: F, ph_e: F, ln_slide_roll: F) -> (F,
     ((num / den).max(F::splat(film::MIN_THERMAL_FACTOR)), exp_range(0.64 * ln_load))
 }
 
-/// [`Lubricant::raceway_mu_film`] of `lub` in every lane, for `w`, `p_mean`, `u_e`, `v_s` > 0
+/// [`Lubricant::raceway_mu_film`] of `lub` under the mixed law `mixed` in every lane, for `w`, `p_mean`, `u_e`, `v_s` > 0
 /// (the film reduced by inlet heating `h`, its logarithm `ln_h`, ln `v_s`); the mask: the
 /// lanes whose value is valid.
 #[allow(clippy::too_many_arguments)]
@@ -35,16 +35,21 @@ pub(crate) fn raceway_mu_film(
     v_s: F,
     ln_vs: F,
     boundary_slide_roll: F,
+    mixed: Mixed,
 ) -> (F, M) {
     let zero = F::splat(0.0);
-    let share = if lub.sigma > 0.0 { asperity_share(h / lub.sigma) } else { zero };
+    let share = match mixed {
+        Mixed::FilmRatio if lub.sigma > 0.0 => asperity_share(h / lub.sigma),
+        Mixed::FilmRatio => zero,
+        Mixed::Weight(w) => F::splat(w),
+    };
     // the film's stress, per lane its viscosity from the table
     let ln_eta = ln_eta(&lub.viscosity, p_mean);
     let (stress, ok) = thermal_eyring_stress_ln(&lub.rheology, p_mean, ln_eta, h, 0.5 * w / p_mean, u_e, v_s, ln_vs, ln_h);
     let film = share.lt(F::splat(1.0)).select(stress / p_mean, zero);
     let asperities = share.gt(zero);
     let boundary = if asperities.any() {
-        asperities.select(boundary_mu(boundary_slide_roll), zero)
+        asperities.select(mixed.boundary_scale() * boundary_mu(boundary_slide_roll), zero)
     } else {
         zero
     };

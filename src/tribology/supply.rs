@@ -38,6 +38,8 @@
 //!
 //! Flooded (`supply` = 0) returns factors of exactly 1: the model's arithmetic is unchanged.
 
+use super::mixed::{Mixed, MixedLaw};
+
 /// The lubricant supply of the bearing (parameter `supply`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Supply {
@@ -108,13 +110,15 @@ pub fn layer_for_film(s: f64, gamma: f64) -> f64 {
     libm::pow(libm::pow(s, -gamma) - 1.0, -1.0 / gamma)
 }
 
-/// What starvation does at one speed: factors on the flooded raceway film, the flooded rib film
-/// and the EHL rolling resistance.
+/// What the supply does at one speed: factors on the flooded raceway film, the flooded rib film
+/// and the EHL rolling resistance; with them the mixed-lubrication law at that speed
+/// (`mixed.rs`), which SKF's weighting makes depend on the speed and the oil as well.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Starvation {
     pub raceway: f64,
     pub rib: f64,
     pub rolling: f64,
+    pub mixed: Mixed,
 }
 
 impl Starvation {
@@ -122,6 +126,7 @@ impl Starvation {
         raceway: 1.0,
         rib: 1.0,
         rolling: 1.0,
+        mixed: Mixed::FilmRatio,
     };
 }
 
@@ -134,12 +139,16 @@ pub struct SupplyLaw {
     /// K_rs nu (d + D) sqrt(K_Z / (2 (D - d))) per r/min (nu in mm2/s, d and D in mm): SKF's
     /// exponent of phi_rs per unit speed.
     rate_per_rpm: f64,
+    /// SKF's phi_bl constant (`mixed::skf_rate`) under SKF's mixed law, None under the film
+    /// ratio's.
+    boundary_rate: Option<f64>,
 }
 
 impl SupplyLaw {
-    /// The law of `supply` with layer `level` for a bearing of bore `d` and outside diameter
-    /// `big_d` (m) running on an oil of kinematic viscosity `nu` (m2/s) at its temperature.
-    pub fn new(supply: Supply, level: f64, d: f64, big_d: f64, nu: f64) -> SupplyLaw {
+    /// The law of `supply` with layer `level` and mixed law `mixed` for a bearing of bore `d`
+    /// and outside diameter `big_d` (m) running on an oil of kinematic viscosity `nu` (m2/s) at
+    /// its temperature.
+    pub fn new(supply: Supply, level: f64, mixed: MixedLaw, d: f64, big_d: f64, nu: f64) -> SupplyLaw {
         let (d_mm, big_d_mm, nu_mm2) = (d * 1e3, big_d * 1e3, nu * 1e6);
         let geometry = if big_d_mm > d_mm {
             (d_mm + big_d_mm) * (K_Z_TAPERED / (2.0 * (big_d_mm - d_mm))).sqrt()
@@ -150,6 +159,10 @@ impl SupplyLaw {
             supply,
             level,
             rate_per_rpm: supply.k_rs() * nu_mm2 * geometry,
+            boundary_rate: match mixed {
+                MixedLaw::FilmRatio => None,
+                MixedLaw::Skf => Some(super::mixed::skf_rate(nu, 0.5 * (d + big_d))),
+            },
         }
     }
 
@@ -159,6 +172,7 @@ impl SupplyLaw {
             supply: Supply::Flooded,
             level: 0.0,
             rate_per_rpm: 0.0,
+            boundary_rate: None,
         }
     }
 
@@ -181,16 +195,25 @@ impl SupplyLaw {
         }
     }
 
-    /// The starvation factors at speed `speed` (rad/s); exactly 1 when flooded.
+    /// The starvation factors and the mixed law at speed `speed` (rad/s); factors exactly 1
+    /// when flooded.
     pub fn starvation(&self, speed: f64) -> Starvation {
+        let mixed = match self.boundary_rate {
+            None => Mixed::FilmRatio,
+            Some(rate) => Mixed::Weight(super::mixed::skf_weight(rate, speed)),
+        };
         if self.supply == Supply::Flooded {
-            return Starvation::FLOODED;
+            return Starvation {
+                mixed,
+                ..Starvation::FLOODED
+            };
         }
         let r = self.layer();
         Starvation {
             raceway: starved_film(r, GAMMA_RACEWAY),
             rib: starved_film(r, GAMMA_RIB),
             rolling: self.replenishment(speed),
+            mixed,
         }
     }
 }
@@ -240,7 +263,7 @@ mod tests {
     #[test]
     fn each_supply_starves_as_its_sources_say() {
         // 32008 (d 40, D 68 mm), 20 mm2/s, 3000 r/min, grease: by hand
-        let law = SupplyLaw::new(Supply::Grease, 0.0, 0.040, 0.068, 20e-6);
+        let law = SupplyLaw::new(Supply::Grease, 0.0, MixedLaw::FilmRatio, 0.040, 0.068, 20e-6);
         let hand = (-6e-8 * 20.0 * 3000.0 * 108.0 * (6.0 / 56.0f64).sqrt()).exp();
         let speed = 3000.0 * std::f64::consts::PI / 30.0;
         assert!(
@@ -260,20 +283,20 @@ mod tests {
         let faster = law.starvation(2.0 * speed);
         assert!(faster.rolling < s.rolling && faster.raceway == s.raceway);
         // an oil bath: full films, SKF's replenishment on the rolling resistance
-        let bath = SupplyLaw::new(Supply::OilBath, 0.0, 0.040, 0.068, 20e-6).starvation(speed);
+        let bath = SupplyLaw::new(Supply::OilBath, 0.0, MixedLaw::FilmRatio, 0.040, 0.068, 20e-6).starvation(speed);
         assert_eq!((bath.raceway, bath.rib), (1.0, 1.0));
         assert!(
             bath.rolling > s.rolling && bath.rolling < 1.0,
             "oil bath replenishes better than grease"
         );
         assert_eq!(
-            SupplyLaw::new(Supply::Flooded, 0.0, 0.040, 0.068, 20e-6).starvation(speed),
+            SupplyLaw::new(Supply::Flooded, 0.0, MixedLaw::FilmRatio, 0.040, 0.068, 20e-6).starvation(speed),
             Starvation::FLOODED
         );
         // at standstill nothing needs replenishing
         assert_eq!(law.starvation(0.0).rolling, 1.0);
         // a level set by the user replaces the supply's own
-        let set = SupplyLaw::new(Supply::OilAir, 0.3, 0.040, 0.068, 20e-6).starvation(speed);
+        let set = SupplyLaw::new(Supply::OilAir, 0.3, MixedLaw::FilmRatio, 0.040, 0.068, 20e-6).starvation(speed);
         assert_eq!(set.raceway, starved_film(0.3, GAMMA_RACEWAY));
         assert_eq!(set.rib, starved_film(0.3, GAMMA_RIB));
     }
