@@ -557,6 +557,8 @@ fn study_validate_quick_writes_every_section() {
         "## 5. Friction torque against the SKF",
         "## 6. [L22]'s friction torques",
         "## 7. In plain words",
+        "## 8. Lubricant supply",
+        "### Greased-bearing skew",
         "product, traction 0",
         "product, traction 1",
         "product (dry)",

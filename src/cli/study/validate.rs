@@ -21,6 +21,8 @@
 //! changed ([`Scenario::set_parameter`], [`Scenario::set_input`]); the dry [D19] sweeps are
 //! `trb::quasi_static::studies::d19`. Everything runs one case at a time.
 
+mod supply;
+
 use super::w25::{self, CaseResult, Variant};
 use crate::cli::report::{self, table};
 use crate::cli::scenario::Scenario;
@@ -2366,7 +2368,7 @@ fn skf_section(plan: &Plan, runs: &W25Runs, apex: &W25Runs, ledger: &mut Ledger)
 // 7. Where we differ
 // =============================================================================================
 
-const SOURCES: [(&str, &str); 5] = [
+const SOURCES: [(&str, &str); 6] = [
     (
         "[W25]",
         "The dynamic model's laws and choices are in docs/dynamic.md; the full-film traction law that stands in for \
@@ -2393,6 +2395,11 @@ const SOURCES: [(&str, &str); 5] = [
         "src/skf_friction.rs: catalogue correlations with Y from ISO 281 (not the product tables), no drag losses; the \
          SKF model assumes a kinematically consistent bearing.",
     ),
+    (
+        supply::SOURCE,
+        "docs/model.md, 'Lubricant supply' and 'Mixed lubrication'; docs/validation-notes.md, 'Lubricant supply': the \
+         skew with the rib's whole load in boundary friction.",
+    ),
 ];
 
 fn differences_section(ledger: &Ledger) -> String {
@@ -2412,7 +2419,11 @@ fn differences_section(ledger: &Ledger) -> String {
         let ratios: Vec<&RatioEntry> = ledger.ratios.iter().filter(|r| r.source == source).collect();
         let checks: Vec<&CheckEntry> = ledger.checks.iter().filter(|c| c.source == source).collect();
         let _ = writeln!(md, "### {source}\n");
-        let columns: Vec<&str> = if source == "[D19]" { DRY.to_vec() } else { LUBRICATED.to_vec() };
+        let columns: Vec<&str> = match source {
+            "[D19]" => DRY.to_vec(),
+            supply::SOURCE => supply::COLUMNS.to_vec(),
+            _ => LUBRICATED.to_vec(),
+        };
         for c in &columns {
             let v: Vec<f64> = ratios
                 .iter()
@@ -2534,7 +2545,9 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
     body += &y22_section(&y22, &mut ledger);
     body += &skf_section(&plan, &w25, &apex, &mut ledger)?;
     body += &l22_torque_section(&l22, &mut ledger);
+    let supply = supply::section(&plan, &mut ledger)?;
     body += &differences_section(&ledger);
+    body += &supply;
 
     let wall = started.elapsed().as_secs_f64();
     let doc = format!(
