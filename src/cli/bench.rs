@@ -25,6 +25,7 @@ use std::time::Instant;
 
 mod kernels;
 pub mod precision;
+mod real_time;
 
 pub const BEGIN: &str = "<!-- bench:begin -->";
 pub const END: &str = "<!-- bench:end -->";
@@ -46,10 +47,11 @@ pub struct BenchArgs {
     /// Only scenarios whose file name contains this text.
     #[arg(long)]
     pub filter: Option<String>,
-    /// Skip the 0.5 s runs of the [W25] case (minutes with the explicit methods).
+    /// Skip the 0.5 s runs of the [W25] case (minutes with the explicit methods) and of the
+    /// real-time cases.
     #[arg(long)]
     pub skip_long: bool,
-    /// Simulated seconds of the long [W25] runs of the targets table.
+    /// Simulated seconds of the long [W25] runs of the targets table and of the real-time runs.
     #[arg(long, default_value_t = 0.5)]
     pub long_seconds: f64,
     /// Folder of the benchmark scenarios.
@@ -117,10 +119,13 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     println!("timing kernels ...");
     let kernels = Kernels::measure(args.quick).map_err(CliError::failed)?;
     let slices = slice_study(&results, args.quick)?;
-    let long = if args.quick || args.skip_long {
-        Vec::new()
+    let (long, real_time) = if args.quick || args.skip_long {
+        (Vec::new(), Vec::new())
     } else {
-        long_runs(&results, args.long_seconds)?
+        (
+            long_runs(&results, args.long_seconds)?,
+            real_time::measure(&results, args.long_seconds),
+        )
     };
     let figures = args
         .out
@@ -128,7 +133,12 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         .map(|p| p.join("figures"))
         .unwrap_or_else(|| PathBuf::from("figures"));
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
-    let text = document(&args, &results, &kernels, &slices, &long, &figures, started.elapsed().as_secs_f64())?;
+    let runs = Runs {
+        slices: &slices,
+        long: &long,
+        real_time: &real_time,
+    };
+    let text = document(&args, &results, &kernels, &runs, &figures, started.elapsed().as_secs_f64())?;
     report::replace_section(&args.out, BEGIN, END, "Performance", &text)?;
     println!("wrote {} ({:.0} s)", args.out.display(), started.elapsed().as_secs_f64());
     Ok(())
@@ -403,12 +413,18 @@ fn micro(s: f64) -> String {
 }
 
 /// The generated section.
+/// The runs of the report beside the work-precision sweeps.
+struct Runs<'a> {
+    slices: &'a [SliceRow],
+    long: &'a [LongRun],
+    real_time: &'a [real_time::Row],
+}
+
 fn document(
     args: &BenchArgs,
     results: &[ScenarioResult],
     k: &Kernels,
-    slices: &[SliceRow],
-    long: &[LongRun],
+    runs: &Runs,
     figures: &Path,
     elapsed: f64,
 ) -> Result<String, CliError> {
@@ -432,9 +448,10 @@ fn document(
         if args.quick { 1 } else { args.repeats },
         elapsed
     );
-    targets(&mut d, results, k, long);
+    targets(&mut d, results, k, runs.long);
+    real_time::write(&mut d, runs.real_time);
     speedups(&mut d, results);
-    slice_table(&mut d, slices);
+    slice_table(&mut d, runs.slices);
     let _ = writeln!(d, "### Work-precision diagrams\n");
     let _ = writeln!(
         d,

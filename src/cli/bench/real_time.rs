@@ -1,0 +1,117 @@
+//! Real time at default settings: the cases a system simulation runs the dynamic model in,
+//! each over the long-run span (0.5 s by default) in the FMU's default 1 ms communication
+//! steps, with the default integrator at the preset's tolerance, once. Wall time per simulated
+//! second, integrator steps, right-hand sides and rejected steps, counted as the FMU counts
+//! them (`integrator.steps`, `integrator.rhs`, `integrator.rejected`).
+//!
+//! The cases are the benchmark scenarios of the same names (their inputs, not their 10 ms
+//! windows): the [W25] axial case, its deflected case, the combined load of a drivetrain, and
+//! the two ends of [W25]'s speed and axial-load series with deflection.
+
+use super::precision::{self, Method, Trace};
+use super::{ScenarioResult, LONG_RUN_STEP};
+use crate::cli::report::table;
+use std::fmt::Write as _;
+
+/// Benchmark scenarios run for real time, in the table's order.
+const CASES: [&str; 6] = [
+    "w25_axial_3500rpm",
+    "deflected_xi0.004",
+    "combined_fy10kN",
+    "combined_load_zone",
+    "series_500rpm_xi0.004",
+    "series_12kN_xi0.004",
+];
+
+pub(super) struct Row {
+    name: String,
+    description: String,
+    seconds: f64,
+    outcome: Result<Trace, String>,
+}
+
+/// Run every real-time case present in `results` over `seconds` simulated.
+pub(super) fn measure(results: &[ScenarioResult], seconds: f64) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for case in CASES {
+        let Some(r) = results.iter().find(|r| r.name == case) else {
+            continue;
+        };
+        let default = Method {
+            integrator: trb::model::AUTOMATIC_INTEGRATOR as i32,
+            setting: trb::simulation::Simulation::new(r.scenario.bearing.bearing.clone())
+                .params()
+                .tolerance,
+        };
+        let mut scenario = r.scenario.clone();
+        scenario.step = LONG_RUN_STEP;
+        scenario.n_steps = ((seconds - scenario.start_time) / scenario.step).round().max(1.0) as usize;
+        scenario.stop_time = scenario.start_time + seconds;
+        println!("real time: {seconds} s of {case} at default settings ...");
+        let outcome = precision::run(&scenario, &default);
+        if let Ok(t) = &outcome {
+            println!("  {:.1} s wall", t.wall);
+        }
+        rows.push(Row {
+            name: case.to_string(),
+            description: r.scenario.description.clone(),
+            seconds,
+            outcome,
+        });
+    }
+    rows
+}
+
+/// The table of the real-time runs.
+pub(super) fn write(d: &mut String, rows: &[Row]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(d, "### Real time at default settings\n");
+    let _ = writeln!(
+        d,
+        "Each case over {} s simulated in 1 ms communication steps, the default integrator at the preset's \
+         tolerance, from the start the scenario gives (the steady running state where there is one, else the \
+         run-in at the initial inputs); one run each, wall time from building the element to the last output. \
+         Goal: at most real time (wall time per simulated second ≤ 1).\n",
+        rows[0].seconds
+    );
+    let body: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            let mut row = vec![format!("`{}`: {}", r.name, r.description)];
+            match &r.outcome {
+                Ok(t) => {
+                    let per_second = t.wall / r.seconds;
+                    row.extend([
+                        format!("{per_second:.2}"),
+                        format!("{:.0}", t.steps as f64 / r.seconds),
+                        format!("{:.0}", t.rhs as f64 / r.seconds),
+                        format!("{:.0}", t.rejected as f64 / r.seconds),
+                        if t.rhs > 0 {
+                            format!("{:.0} µs", t.wall / t.rhs as f64 * 1e6)
+                        } else {
+                            "–".into()
+                        },
+                        if per_second <= 1.0 { "met" } else { "not met" }.into(),
+                    ]);
+                }
+                Err(e) => row.extend([format!("failed: {e}"), "".into(), "".into(), "".into(), "".into(), "".into()]),
+            }
+            row
+        })
+        .collect();
+    *d += &table(
+        &[
+            "case",
+            "wall s per simulated s",
+            "steps per s",
+            "right-hand sides per s",
+            "rejected per s",
+            "wall per right-hand side",
+            "≤ 1",
+        ],
+        &body,
+    );
+    d.push('\n');
+}
