@@ -18,6 +18,7 @@
 pub mod bearing;
 pub mod catalogue;
 pub mod contact;
+pub mod defect;
 pub mod dynamic;
 pub mod ehl_line;
 pub mod fastmath;

@@ -135,6 +135,9 @@ pub struct Parameters {
     /// (`mixedLubrication`, `tribology::mixed`).
     #[serde(default)]
     pub mixed_lubrication: crate::tribology::MixedLaw,
+    /// A local defect (`defect.*`, `crate::defect`).
+    #[serde(default)]
+    pub defect: crate::defect::DefectParameters,
     /// The oil's kinematic viscosity at its temperature (m2/s), set with `eta0` by
     /// [`Parameters::at_oil_temperature`] (0 before: `eta0` over the density at 15 degC).
     #[serde(skip)]
@@ -310,6 +313,8 @@ impl Parameters {
             supply_level: 0.0,
             // each contact by its own film ratio, as [W25] computes
             mixed_lubrication: crate::tribology::MixedLaw::FilmRatio,
+            // a healthy bearing
+            defect: crate::defect::DefectParameters::default(),
             oil_nu: 0.0,
         }
     }
@@ -473,6 +478,9 @@ impl Parameters {
                     self.supply_level
                 ),
             );
+        }
+        if let Err((name, message)) = crate::defect::validate(&self.defect, b.roller_length, std::f64::consts::PI * b.pitch_diameter, d) {
+            return bad(name, message);
         }
         Ok(())
     }

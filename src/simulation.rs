@@ -555,6 +555,10 @@ impl Simulation {
             var::WORK_BUDGET => p.work_budget,
             var::CONTAMINATION_E_C => p.contamination_ec,
             var::SUPPLY_LEVEL => p.supply_level,
+            var::DEFECT_ANGLE => p.defect.angle,
+            var::DEFECT_LENGTH => p.defect.length,
+            var::DEFECT_WIDTH => p.defect.width,
+            var::DEFECT_DEPTH => p.defect.depth,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -676,6 +680,10 @@ impl Simulation {
             var::WORK_BUDGET => &mut p.work_budget,
             var::CONTAMINATION_E_C => &mut p.contamination_ec,
             var::SUPPLY_LEVEL => &mut p.supply_level,
+            var::DEFECT_ANGLE => &mut p.defect.angle,
+            var::DEFECT_LENGTH => &mut p.defect.length,
+            var::DEFECT_WIDTH => &mut p.defect.width,
+            var::DEFECT_DEPTH => &mut p.defect.depth,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };
@@ -755,6 +763,8 @@ impl Simulation {
             var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
             var::SUPPLY => p.supply as i32,
             var::MIXED_LUBRICATION => p.mixed_lubrication as i32,
+            var::DEFECT_RING => p.defect.ring as i32,
+            var::DEFECT_EDGE => p.defect.edge as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
             var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
@@ -796,6 +806,20 @@ impl Simulation {
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
             var::SUPPLY => p.supply = crate::tribology::Supply::from_index(value as i64).unwrap_or(p.supply),
+            var::DEFECT_RING => {
+                p.defect.ring = if value == 0 {
+                    crate::defect::DefectRing::None
+                } else {
+                    crate::defect::DefectRing::Cup
+                }
+            }
+            var::DEFECT_EDGE => {
+                p.defect.edge = if value == 0 {
+                    crate::defect::Edge::Sharp
+                } else {
+                    crate::defect::Edge::Rounded
+                }
+            }
             var::MIXED_LUBRICATION => {
                 p.mixed_lubrication = crate::tribology::MixedLaw::from_index(value as i64).unwrap_or(p.mixed_lubrication)
             }

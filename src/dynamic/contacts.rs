@@ -26,6 +26,7 @@
 use super::{RollerRecord, Totals, CAGE, CONE, PER_ROLLER, ROLLERS};
 use crate::bearing::Bearing;
 use crate::contact::{LineLaw, PointContact};
+use crate::defect::CupDefect;
 use crate::fastmath as fm;
 use crate::geometry::Geometry;
 use crate::journal_film::ShortJournal;
@@ -70,6 +71,14 @@ pub(crate) struct Constants {
     half_clearance: f64,
     pub(crate) lobes: u32,
     waveform: f64,
+    /// A local defect on the cup (`crate::defect`), the raceway's middle (x, r) and its
+    /// generatrix direction, for the station of a contact point across the raceway.
+    cup_defect: Option<CupDefect>,
+    cup_mid: [f64; 2],
+    cup_dir: [f64; 2],
+    /// A slice's contact lies within this of its roller's azimuth along the rolling direction
+    /// (the roller's radius): the reach of the cheap test whether a roller is near the defect.
+    defect_reach: f64,
     dd_half: Vec<f64>,
     damping: f64,
     /// 2 zeta sqrt(m / s): the slice damping coefficient is this times sqrt(dq/d delta).
@@ -248,6 +257,18 @@ impl Constants {
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
+            cup_defect: CupDefect::new(&p.defect, b.roller_mean_radius()),
+            cup_mid: {
+                let (a, z) = (g.cup.point[0], g.cup.point[g.cup.point.len() - 1]);
+                [0.5 * (a[0] + z[0]), 0.5 * (a[1] + z[1])]
+            },
+            cup_dir: {
+                let (a, z) = (g.cup.point[0], g.cup.point[g.cup.point.len() - 1]);
+                let (dx, dr) = (z[0] - a[0], z[1] - a[1]);
+                let n = dx.hypot(dr).max(f64::MIN_POSITIVE);
+                [dx / n, dr / n]
+            },
+            defect_reach: b.roller_mean_radius(),
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
             damping: p.contact_damping,
             damping_factor: 2.0 * p.contact_damping * (g.roller_mass / g.slices as f64).sqrt(),
@@ -628,6 +649,32 @@ struct LineSum {
     traction: V3,
     power: f64,
     extrapolated: bool,
+}
+
+/// The extra interference of the cup at contact point `q` (global frame) and its derivative
+/// along the azimuth: the clearance, the lobes ([Y22]) and, where `defect` says the roller is
+/// near it, the drop into the cup's local defect (`crate::defect`; the drop is normal to the
+/// raceway, the lobes radial).
+#[inline]
+fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
+    let psi = libm::atan2(q[2], q[1]);
+    let (mut gap, mut gap_psi) = if c.lobes > 0 {
+        let nl = c.lobes as f64;
+        let (sl, cl) = libm::sincos(nl * psi);
+        let lobe = 0.5 * c.waveform * (1.0 - cl);
+        let lobe_psi = 0.5 * c.waveform * nl * sl;
+        (-(c.half_clearance + lobe) * c.cos_o, -lobe_psi * c.cos_o)
+    } else {
+        (-c.half_clearance * c.cos_o, 0.0)
+    };
+    if let (true, Some(d)) = (defect, &c.cup_defect) {
+        let rho = q[1].hypot(q[2]);
+        let s = (q[0] - c.cup_mid[0]) * c.cup_dir[0] + (rho - c.cup_mid[1]) * c.cup_dir[1];
+        let (drop, drop_psi) = d.drop(psi, rho, s);
+        gap -= drop;
+        gap_psi -= drop_psi;
+    }
+    (gap, gap_psi)
 }
 
 /// All slices of one roller against one raceway. `gap(p)` is the extra interference term at
@@ -1225,14 +1272,11 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let cup_sum = if c.lobes > 0 {
-        race_slices(c, &cup, dd, cup_loads, |q: &V3| {
-            let nl = c.lobes as f64;
-            let (sl, cl) = libm::sincos(nl * libm::atan2(q[2], q[1]));
-            let lobe = 0.5 * c.waveform * (1.0 - cl);
-            let lobe_psi = 0.5 * c.waveform * nl * sl;
-            (-(c.half_clearance + lobe) * c.cos_o, -lobe_psi * c.cos_o)
-        })
+    let near_defect = c
+        .cup_defect
+        .is_some_and(|d| d.near(libm::atan2(pos[2], pos[1]), pos[1].hypot(pos[2]), c.defect_reach));
+    let cup_sum = if c.lobes > 0 || near_defect {
+        race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect))
     } else {
         let gap = -c.half_clearance * c.cos_o;
         #[cfg(target_arch = "x86_64")]

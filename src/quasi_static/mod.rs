@@ -329,6 +329,9 @@ struct RollerSetup {
     gamma: f64,
     gap_cone: f64,
     gap_cup: f64,
+    /// The roller stands on the cup's local defect: its cup slices take the crown plus the
+    /// defect's drop of `defect_tables[j]`.
+    on_defect: bool,
 }
 
 /// The level-0 model of one bearing with one parameter set.
@@ -351,6 +354,12 @@ pub struct QuasiStatic {
     spin_ratio: f64,
     cone_table: SliceTable,
     cup_table: SliceTable,
+    /// A local defect on the cup (`crate::defect`), and per roller the cup's slice table with
+    /// the defect's drop added to the crown (filled for the rollers on it, `prepare`); the cup
+    /// slices' stations across the raceway (from its middle) and radii.
+    cup_defect: Option<crate::defect::CupDefect>,
+    defect_tables: Vec<SliceTable>,
+    defect_station: Vec<f64>,
     /// This solve is axisymmetric: one roller is evaluated and replicated.
     axisymmetric: bool,
     /// The cone translations (x, y, z) this solve prescribes (`prepare`): all three in
@@ -409,6 +418,20 @@ impl QuasiStatic {
         let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
         let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
         let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
+        let cup_defect = crate::defect::CupDefect::new(&params.defect, bearing.roller_mean_radius());
+        let defect_tables = if cup_defect.is_some() {
+            vec![cup_table.clone(); z]
+        } else {
+            Vec::new()
+        };
+        let defect_station = {
+            let pts = &geometry.cup.point;
+            let (a, e) = (pts[0], pts[pts.len() - 1]);
+            let (dx, dr) = (e[0] - a[0], e[1] - a[1]);
+            let len = dx.hypot(dr).max(f64::MIN_POSITIVE);
+            let mid = [0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1])];
+            pts.iter().map(|p| ((p[0] - mid[0]) * dx + (p[1] - mid[1]) * dr) / len).collect()
+        };
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
@@ -422,6 +445,9 @@ impl QuasiStatic {
             prescribed: [None; 3],
             cone_table,
             cup_table,
+            cup_defect,
+            defect_tables,
+            defect_station,
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
             regularisation: 1e-9 * k_ref,
             geometry,
@@ -482,7 +508,8 @@ impl QuasiStatic {
             && inputs.xi == 0.0
             && inputs.zeta == 0.0
             && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
-            && p.roller_dd.iter().all(|d| *d == p.roller_dd[0]);
+            && p.roller_dd.iter().all(|d| *d == p.roller_dd[0])
+            && self.cup_defect.is_none();
         let cos_h = libm::cos(g.half_angle);
         let cos_o = libm::cos(g.cup_angle);
         for j in 0..z {
@@ -494,13 +521,33 @@ impl QuasiStatic {
                 0.0
             };
             let dd = 0.5 * p.roller_dd[j] * cos_h;
+            let mut on_defect = false;
+            if let Some(d) = &self.cup_defect {
+                let table = &mut self.defect_tables[j];
+                for k in 0..g.slices {
+                    let drop = d.drop(psi, g.cup.raceway_radius[k], self.defect_station[k]).0;
+                    table.crown[k] = g.crown[k] + drop;
+                    on_defect |= drop > 0.0;
+                }
+            }
             self.setup[j] = RollerSetup {
                 cos_psi: c,
                 sin_psi: s,
                 gamma: inputs.zeta * c - inputs.xi * s,
                 gap_cone: dd,
                 gap_cup: dd - (0.5 * p.clearance + lobe) * cos_o,
+                on_defect,
             };
+        }
+    }
+
+    /// The cup's slice table of roller `j`: with the defect's drop where it stands on it.
+    #[inline]
+    fn cup_table_of(&self, j: usize) -> &SliceTable {
+        if self.setup[j].on_defect {
+            &self.defect_tables[j]
+        } else {
+            &self.cup_table
         }
     }
 
@@ -613,7 +660,7 @@ impl QuasiStatic {
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
-        let so = Self::line_sums(&g.cup, &self.cup_table, base_o, theta, 0.0, cup_loads);
+        let so = Self::line_sums(&g.cup, self.cup_table_of(j), base_o, theta, 0.0, cup_loads);
 
         let add_line = |e: &mut RollerEval, n: [f64; 2], s: &LineSums, on_cone: bool| {
             let nv = Vector3::new(n[0], n[1], 0.0);
@@ -1031,7 +1078,7 @@ impl QuasiStatic {
             let theta = x[5 + 3 * j] / self.ls;
             let s = g.slices as f64;
             // delta_o(mid) = -(a n_ox + rho n_or) - theta lever + gap_cup - crown
-            let cup_rest = -theta * g.cup.lever[mid] + st.gap_cup - g.crown[mid];
+            let cup_rest = -theta * g.cup.lever[mid] + st.gap_cup - self.cup_table_of(j).crown[mid];
             match &g.flange {
                 Some(f) => {
                     let nf = f.normal;
@@ -1855,10 +1902,11 @@ impl QuasiStatic {
         let no = g.cup.normal;
         let base_i = (x[0] - a) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
         let base_o = -(a * no[0] + rho * no[1]) + st.gap_cup;
+        let cup_crown = &self.cup_table_of(j).crown;
         for k in 0..g.slices {
             let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - g.crown[k];
             cone[k] = g.cone.law.load(k, di).0;
-            let d_o = base_o - theta * g.cup.lever[k] - g.crown[k];
+            let d_o = base_o - theta * g.cup.lever[k] - cup_crown[k];
             cup[k] = g.cup.law.load(k, d_o).0;
         }
     }

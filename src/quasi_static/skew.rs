@@ -287,9 +287,9 @@ impl QuasiStatic {
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
-        for (line, sl, base, chi, is_cone) in [
-            (&g.cone, &sk.cone, base_i, &self.cone_chi[..], true),
-            (&g.cup, &sk.cup, base_o, &self.cone_chi[..], false),
+        for (line, sl, base, chi, crown, is_cone) in [
+            (&g.cone, &sk.cone, base_i, &self.cone_chi[..], &g.crown[..], true),
+            (&g.cup, &sk.cup, base_o, &self.cone_chi[..], &self.cup_table_of(j).crown[..], false),
         ] {
             let n = Vector2::new(line.normal[0], line.normal[1]);
             let (mut sum_q, mut sum_lever, mut sum_chi, mut geom, mut fric) = (0.0, 0.0, 0.0, 0.0, 0.0);
@@ -297,7 +297,7 @@ impl QuasiStatic {
             let mut max_delta = f64::NEG_INFINITY;
             for k in 0..g.slices {
                 let gamma_term = if is_cone { st.gamma * chi[k] } else { 0.0 };
-                let delta = base - theta * line.lever[k] + gamma_term - g.crown[k] + sl.shift[k] * phi2;
+                let delta = base - theta * line.lever[k] + gamma_term - crown[k] + sl.shift[k] * phi2;
                 max_delta = max_delta.max(delta);
                 if delta <= 0.0 {
                     continue;
@@ -876,10 +876,11 @@ impl QuasiStatic {
         let no = g.cup.normal;
         let base_i = (x[0] - a) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
         let base_o = -(a * no[0] + rho * no[1]) + st.gap_cup;
+        let cup_crown = &self.cup_table_of(j).crown;
         for k in 0..g.slices {
             let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - g.crown[k] + sk.cone.shift[k] * phi * phi;
             cone[k] = g.cone.law.load(k, di).0;
-            let d_o = base_o - theta * g.cup.lever[k] - g.crown[k] + sk.cup.shift[k] * phi * phi;
+            let d_o = base_o - theta * g.cup.lever[k] - cup_crown[k] + sk.cup.shift[k] * phi * phi;
             cup[k] = g.cup.law.load(k, d_o).0;
         }
     }
