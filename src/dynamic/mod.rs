@@ -163,6 +163,11 @@ pub struct Dynamic {
     pub(crate) p: Parameters,
     pub(crate) c: contacts::Constants,
     ig: Integrator,
+    /// The run-in's integrator settings where the element's differ from its bearing's
+    /// defaults (`run_in.rs`): the running state a start runs in to is a property of the
+    /// operating point, the same whatever integrator the run then takes. With the element's
+    /// reference speed for the tolerance scales.
+    run_in_settings: Option<(Parameters, f64)>,
     /// The contacts' last evaluation, which the outputs come from.
     eval: Evaluation,
     /// ISO 281 / ISO/TS 16281 ratings (one lamina per slice).
@@ -263,32 +268,51 @@ impl BlockSystem for Model<'_> {
     }
 }
 
+/// The integrator of `params` (`integrator`, `tolerance`, `maxStep`) for the model of
+/// geometry `g` and constants `c`, its tolerance scales at reference speed `speed` (rad/s).
+fn integrator(g: &Geometry, c: &contacts::Constants, params: &Parameters, speed: f64) -> Integrator {
+    let n = ROLLERS + PER_ROLLER * g.z;
+    let (atol, rtol) = tolerances(g, c, params, speed, n);
+    let implicit = || {
+        let scale = perturbation_scales(g, &atol, params);
+        let active = moving_globals(g, params);
+        let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
+        ig.orbit = Some(rosenbrock::Orbit {
+            state: ROLLERS + 2,
+            turn: JACOBIAN_TURN,
+            pitch: identical_rollers(params).then(|| TAU / g.z as f64),
+        });
+        Box::new(ig)
+    };
+    match params.integrator {
+        1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
+        2 => Integrator::Rosenbrock(implicit()),
+        3 => Integrator::Automatic {
+            implicit: implicit(),
+            explicit: Dopri5::new(n, atol.clone(), rtol.clone(), params.max_step),
+        },
+        _ => Integrator::Dopri5(Dopri5::new(n, atol, rtol, params.max_step)),
+    }
+}
+
 impl Dynamic {
     pub fn new(bearing: &Bearing, params: &Parameters) -> Result<Dynamic, ModelError> {
         let g = Geometry::new(bearing, params);
         let c = contacts::Constants::new(bearing, params, &g);
-        let n = ROLLERS + PER_ROLLER * g.z;
-        let (atol, rtol) = tolerances(&g, &c, params, bearing.speed.abs().max(100.0), n);
-        let implicit = || {
-            let scale = perturbation_scales(&g, &atol, params);
-            let active = moving_globals(&g, params);
-            let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
-            ig.orbit = Some(rosenbrock::Orbit {
-                state: ROLLERS + 2,
-                turn: JACOBIAN_TURN,
-                pitch: identical_rollers(params).then(|| TAU / g.z as f64),
-            });
-            Box::new(ig)
-        };
-        let ig = match params.integrator {
-            1 => Integrator::MilneHamming(MilneHamming::new(n, params.max_step, atol, rtol)),
-            2 => Integrator::Rosenbrock(implicit()),
-            3 => Integrator::Automatic {
-                implicit: implicit(),
-                explicit: Dopri5::new(n, atol.clone(), rtol.clone(), params.max_step),
-            },
-            _ => Integrator::Dopri5(Dopri5::new(n, atol, rtol, params.max_step)),
-        };
+        let speed = bearing.speed.abs().max(100.0);
+        let ig = integrator(&g, &c, params, speed);
+        let defaults = Parameters::from_bearing(bearing);
+        let run_in_settings =
+            (params.integrator != defaults.integrator || params.tolerance != defaults.tolerance || params.max_step != defaults.max_step)
+                .then(|| {
+                    let settings = Parameters {
+                        integrator: defaults.integrator,
+                        tolerance: defaults.tolerance,
+                        max_step: defaults.max_step,
+                        ..params.clone()
+                    };
+                    (settings, speed)
+                });
         Ok(Dynamic {
             eval: Evaluation::new(g.z, params.slices),
             rating: crate::rating::BearingRating::new(bearing, params.slices),
@@ -296,6 +320,7 @@ impl Dynamic {
             p: params.clone(),
             c,
             ig,
+            run_in_settings,
         })
     }
 

@@ -84,6 +84,21 @@ impl Dynamic {
     /// the rolling set back to where it started; the time, the integrator's memory and its
     /// counters are those of a fresh start. On failure `state` is unchanged.
     pub fn run_in(&mut self, state: &mut DynamicState, inputs: &Inputs) -> Result<RunIn, ModelError> {
+        // with the bearing's default integrator settings, a fresh integrator, whatever the
+        // element's own (which it gets back, untouched, after)
+        let own = self
+            .run_in_settings
+            .as_ref()
+            .map(|(settings, speed)| super::integrator(&self.g, &self.c, settings, *speed))
+            .map(|ig| std::mem::replace(&mut self.ig, ig));
+        let result = self.run_in_with_integrator(state, inputs);
+        if let Some(own) = own {
+            self.ig = own;
+        }
+        result
+    }
+
+    fn run_in_with_integrator(&mut self, state: &mut DynamicState, inputs: &Inputs) -> Result<RunIn, ModelError> {
         let t0 = state.t;
         let start_angle = state.y[CAGE + 2];
         let mut out = Outputs::new(self.g.z);
