@@ -31,6 +31,7 @@ fn assert_agree(name: &str, a: &[[f64; 5]], r: &[[f64; 5]], bounds: [f64; 5]) {
     const NAMES: [&str; 5] = ["frictionTorque", "skew.mean", "roller[1].skew", "cage.speed", "Qo.max"];
     for k in 0..5 {
         let d = rel_diff(a, r, k);
+        eprintln!("{name}: {} differs by {d:.3e} (bound {:.0e})", NAMES[k], bounds[k]);
         assert!(d <= bounds[k], "{name}: {} differs by {d:.3e} (bound {:.0e})", NAMES[k], bounds[k]);
     }
 }
@@ -42,16 +43,18 @@ fn the_three_integrators_agree_on_the_w25_case_and_under_combined_load() {
         let gill = series(1, 1e-6, fy);
         let rosenbrock = series(2, 1e-6, fy);
         let name = format!("Fy {fy} N");
-        // fourth order at 1 us: measured 4.9e-9..6.3e-9 torque, 1.8e-9..9.4e-9 skew, 1.1e-12
-        // cage speed; Rosenbrock at 1e-6: measured 6.1e-6 torque, 3.1e-6..8.2e-5 skew, 1.8e-9
-        // cage speed; bounds ~5-10x the measured. (With the thermal traction of 2026-11-24 the
-        // skew of this case is 5x smaller, its traction slopes steeper: the relative skew
-        // differences grew from 1e-10 and 4.4e-6.)
+        // All three start from the same running state (under the radial load, the run-in at
+        // the bearing's default integrator settings, `run_in.rs`). Measured 2026-11-28: fourth
+        // order at 1 us 3.4e-10 (Fy 0) and 2.8e-8 (Fy 25 kN) torque, up to 1.1e-7 skew, 2.3e-11
+        // cage speed, 1.2e-8 Qo.max: under the radial load the start's run-in leaves its fast
+        // contact modes at the default tolerance's level, and the fixed step resolves them
+        // to about 1e-7. Rosenbrock at 1e-6: up to 1.2e-7 torque, 7.7e-6 skew, 2.1e-10 cage
+        // speed. Bounds ~5-10x the measured.
         assert_agree(
             &format!("Gill/Milne-Hamming, {name}"),
             &gill,
             &reference,
-            [5e-8, 5e-8, 5e-8, 1e-11, 1e-8],
+            [2e-7, 5e-7, 5e-7, 1e-10, 1e-7],
         );
         assert_agree(
             &format!("Rosenbrock-W, {name}"),

@@ -265,7 +265,7 @@ impl Constants {
             cup_dir: {
                 let (a, z) = (g.cup.point[0], g.cup.point[g.cup.point.len() - 1]);
                 let (dx, dr) = (z[0] - a[0], z[1] - a[1]);
-                let n = dx.hypot(dr).max(f64::MIN_POSITIVE);
+                let n = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
                 [dx / n, dr / n]
             },
             defect_reach: b.roller_mean_radius(),
@@ -668,7 +668,7 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
         (-c.half_clearance * c.cos_o, 0.0)
     };
     if let (true, Some(d)) = (defect, &c.cup_defect) {
-        let rho = q[1].hypot(q[2]);
+        let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
         let s = (q[0] - c.cup_mid[0]) * c.cup_dir[0] + (rho - c.cup_mid[1]) * c.cup_dir[1];
         let (drop, drop_psi) = d.drop(psi, rho, s);
         gap -= drop;
@@ -1272,9 +1272,13 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let near_defect = c
-        .cup_defect
-        .is_some_and(|d| d.near(libm::atan2(pos[2], pos[1]), pos[1].hypot(pos[2]), c.defect_reach));
+    let near_defect = c.cup_defect.is_some_and(|d| {
+        d.near(
+            libm::atan2(pos[2], pos[1]),
+            (pos[1] * pos[1] + pos[2] * pos[2]).sqrt(),
+            c.defect_reach,
+        )
+    });
     let cup_sum = if c.lobes > 0 || near_defect {
         race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect))
     } else {

@@ -428,7 +428,7 @@ impl QuasiStatic {
             let pts = &geometry.cup.point;
             let (a, e) = (pts[0], pts[pts.len() - 1]);
             let (dx, dr) = (e[0] - a[0], e[1] - a[1]);
-            let len = dx.hypot(dr).max(f64::MIN_POSITIVE);
+            let len = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
             let mid = [0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1])];
             pts.iter().map(|p| ((p[0] - mid[0]) * dx + (p[1] - mid[1]) * dr) / len).collect()
         };
