@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::amplitude;
 use trb::bearing::Bearing;
 use trb::model::{ModelError, Outputs, Parameters};
 use trb::simulation::Simulation;
@@ -132,20 +133,6 @@ fn outer_race_frequency() -> f64 {
     let mid = g.slices / 2;
     let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
     b.roller_count as f64 * 3500.0 / 60.0 * ri / (ri + ro)
-}
-
-/// Amplitude of the windowed (Hann) Fourier sum of `x` (sampled every `dt`) at `f`.
-fn amplitude(x: &[f64], dt: f64, f: f64) -> f64 {
-    let n = x.len();
-    let mean = x.iter().sum::<f64>() / n as f64;
-    let (mut c, mut s) = (0.0, 0.0);
-    for (k, v) in x.iter().enumerate() {
-        let w = 0.5 - 0.5 * (std::f64::consts::TAU * k as f64 / (n - 1) as f64).cos();
-        let (si, co) = (std::f64::consts::TAU * f * k as f64 * dt).sin_cos();
-        c += w * (v - mean) * co;
-        s += w * (v - mean) * si;
-    }
-    c.hypot(s)
 }
 
 /// The squared envelope of `x`: its square about the mean (the demodulation of envelope

@@ -58,16 +58,7 @@ fn the_housing_force_rings_at_the_roller_pass_frequency_at_fidelity_1() {
     let pass = z * cage / std::f64::consts::TAU;
     // the spectrum of the fluctuation around the mean, 100 Hz to 2 kHz, its peak refined by a
     // parabola through the log magnitudes of the three bins around it
-    let amplitude = |f: f64| {
-        let (mut c, mut sn) = (0.0, 0.0);
-        for (k, v) in force.iter().enumerate() {
-            let w = 0.5 - 0.5 * (std::f64::consts::TAU * k as f64 / (n - 1) as f64).cos();
-            let (si, co) = (std::f64::consts::TAU * f * k as f64 * dt).sin_cos();
-            c += w * (v - mean) * co;
-            sn += w * (v - mean) * si;
-        }
-        c.hypot(sn)
-    };
+    let amplitude = |f: f64| common::amplitude(&force, dt, f);
     let df = 1.0 / (n as f64 * dt);
     let bins: Vec<f64> = (1..=(2000.0 / df) as usize)
         .map(|k| k as f64 * df)

@@ -578,10 +578,12 @@ fn rib_traction_coef(c: &Constants, fl: &FlangeConst, starved: Starved, q: f64, 
                 };
                 return c
                     .lubricant
-                    .rib_force_with(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed, film)
+                    .rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed, film)
                     / vs;
             }
-            c.lubricant.rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed) / vs
+            c.lubricant
+                .rib_force(q, vs, u_e, slide_roll, h_iso, ea, eb, ph, starved.mixed, tr::rib_film_traction)
+                / vs
         }
     }
 }

@@ -436,13 +436,13 @@ impl FrictionModel {
             let mu = if w > 0.0 {
                 let h = heating * h_iso;
                 let ln_h = if h > 0.0 { fm::ln(h) } else { f64::NEG_INFINITY };
-                if HALLEY {
-                    self.lubricant
-                        .raceway_mu_film_halley(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll, c.mixed)
+                let stress = if HALLEY {
+                    tr::traction::thermal_eyring_stress_ln_halley
                 } else {
-                    self.lubricant
-                        .raceway_mu_film(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll, c.mixed)
-                }
+                    tr::traction::thermal_eyring_stress_ln
+                };
+                self.lubricant
+                    .raceway_mu_film_with(w, p_mean, h, ln_h, c.u_e, c.v_s, c.ln_vs, c.boundary_slide_roll, c.mixed, stress)
             } else {
                 0.0
             };
@@ -849,8 +849,18 @@ impl FrictionModel {
                                     let law = |q: f64| {
                                         let (a, b, p_h) = f.hertz.ellipse(q);
                                         let h = self.rib_film(g, f, u_e, q, starved.rib);
-                                        self.lubricant
-                                            .rib_force_halley(q, v_s.abs(), u_e, slide_roll, h, a, b, p_h, starved.mixed)
+                                        self.lubricant.rib_force(
+                                            q,
+                                            v_s.abs(),
+                                            u_e,
+                                            slide_roll,
+                                            h,
+                                            a,
+                                            b,
+                                            p_h,
+                                            starved.mixed,
+                                            tr::rib::rib_film_traction_halley,
+                                        )
                                     };
                                     // the table exists at this speed when the raceways' does
                                     let read = (sliced && tabulate)
@@ -859,8 +869,18 @@ impl FrictionModel {
                                     read.map_or_else(|| law(qf), |v| fm::exp(v[0]) * qf)
                                 } else {
                                     let (a, b, p_h, h) = film();
-                                    self.lubricant
-                                        .rib_force(qf, v_s.abs(), u_e, slide_roll, h, a, b, p_h, starved.mixed)
+                                    self.lubricant.rib_force(
+                                        qf,
+                                        v_s.abs(),
+                                        u_e,
+                                        slide_roll,
+                                        h,
+                                        a,
+                                        b,
+                                        p_h,
+                                        starved.mixed,
+                                        tr::rib_film_traction,
+                                    )
                                 }
                             }
                             tr::TractionLaw::NewtonianEyring => {
@@ -1014,8 +1034,18 @@ mod tests {
                 let law = |q: f64| {
                     let (a, b, p_h) = f.hertz.ellipse(q);
                     let h = tr::film_point(fr.eta0, fr.alpha, g.e_prime, u_e, f.hertz.ry, f.hertz.rx, q);
-                    fr.lubricant
-                        .rib_force_halley(q, v_s, u_e, slide_roll, h, a, b, p_h, tr::Mixed::FilmRatio)
+                    fr.lubricant.rib_force(
+                        q,
+                        v_s,
+                        u_e,
+                        slide_roll,
+                        h,
+                        a,
+                        b,
+                        p_h,
+                        tr::Mixed::FilmRatio,
+                        tr::rib::rib_film_traction_halley,
+                    )
                 };
                 let mut table = LoadTable::default();
                 table.reset(1);

@@ -109,31 +109,13 @@ impl Lubricant {
         self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, mixed, stress)
     }
 
-    /// [`Lubricant::raceway_mu_film`] with the film equation of the thermal Eyring law solved
-    /// by Halley's method ([`traction::thermal_eyring_stress_ln_halley`]; the same coefficient
-    /// to rounding, fewer evaluations; the quasi-static model's).
+    /// The coefficient of [`Lubricant::raceway_mu_film`] with the film stress law `stress`
+    /// (the quasi-static model's: [`traction::thermal_eyring_stress_ln_halley`], the film
+    /// equation solved by Halley's method, the same coefficient to rounding in fewer
+    /// evaluations).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub fn raceway_mu_film_halley(
-        &self,
-        w: f64,
-        p_mean: f64,
-        h: f64,
-        ln_h: f64,
-        u_e: f64,
-        v_s: f64,
-        ln_vs: f64,
-        boundary_slide_roll: f64,
-        mixed: Mixed,
-    ) -> f64 {
-        let stress = traction::thermal_eyring_stress_ln_halley;
-        self.raceway_mu_film_with(w, p_mean, h, ln_h, u_e, v_s, ln_vs, boundary_slide_roll, mixed, stress)
-    }
-
-    /// The coefficient of [`Lubricant::raceway_mu_film`] with the film stress law `stress`.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn raceway_mu_film_with(
+    pub(crate) fn raceway_mu_film_with(
         &self,
         w: f64,
         p_mean: f64,
@@ -166,27 +148,6 @@ impl Lubricant {
         share * boundary + (1.0 - share) * film
     }
 
-    /// Friction force |F| (N) of the rib contact (`traction` = 0) at normal load `q`, sliding
-    /// speed `v_s`, entrainment speed `u_e`, isothermal central film `h_iso` and Hertz ellipse
-    /// (`a` along the entrainment, `b`, peak pressure `p_h`): asperity and film shares from the
-    /// film ratio against the rib roughness (`rib.rs`); `boundary_slide_roll` as in
-    /// [`Lubricant::raceway_mu`].
-    #[allow(clippy::too_many_arguments)]
-    pub fn rib_force(
-        &self,
-        q: f64,
-        v_s: f64,
-        u_e: f64,
-        boundary_slide_roll: f64,
-        h_iso: f64,
-        a: f64,
-        b: f64,
-        p_h: f64,
-        mixed: Mixed,
-    ) -> f64 {
-        self.rib_force_with(q, v_s, u_e, boundary_slide_roll, h_iso, a, b, p_h, mixed, rib_film_traction)
-    }
-
     /// The rib's film ratio Λ = h / σ_rib as [`Lubricant::rib_force`] takes it: the isothermal
     /// point-contact film `h_iso` reduced by inlet shear heating, over the roller end / rib
     /// composite roughness (infinite without roughness).
@@ -207,39 +168,17 @@ impl Lubricant {
         h_iso * thermal_reduction(self.inlet_heating * u_e * u_e, p_h / self.e_prime, slide_roll)
     }
 
-    /// [`Lubricant::rib_force`] with the film equation solved by Halley's method
-    /// ([`rib::rib_film_traction_halley`]; the same force to rounding; the quasi-static model's).
-    #[allow(clippy::too_many_arguments)]
-    pub fn rib_force_halley(
-        &self,
-        q: f64,
-        v_s: f64,
-        u_e: f64,
-        boundary_slide_roll: f64,
-        h_iso: f64,
-        a: f64,
-        b: f64,
-        p_h: f64,
-        mixed: Mixed,
-    ) -> f64 {
-        self.rib_force_with(
-            q,
-            v_s,
-            u_e,
-            boundary_slide_roll,
-            h_iso,
-            a,
-            b,
-            p_h,
-            mixed,
-            rib::rib_film_traction_halley,
-        )
-    }
-
-    /// [`Lubricant::rib_force`] with the rib film's force `film` (as `rib::rib_film_traction`).
+    /// Friction force |F| (N) of the rib contact (`traction` = 0) at normal load `q`, sliding
+    /// speed `v_s`, entrainment speed `u_e`, isothermal central film `h_iso` and Hertz ellipse
+    /// (`a` along the entrainment, `b`, peak pressure `p_h`): asperity and film shares by the
+    /// mixed law `mixed` (`mixed.rs`, by the film ratio against the rib roughness or SKF's
+    /// weighting); `boundary_slide_roll` as in [`Lubricant::raceway_mu`]. The film's force is
+    /// `film`: [`rib::rib_film_traction`], or the quasi-static model's
+    /// [`rib::rib_film_traction_halley`] (the film equation solved by Halley's method, the same
+    /// force to rounding).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(crate) fn rib_force_with(
+    pub fn rib_force(
         &self,
         q: f64,
         v_s: f64,
@@ -275,7 +214,7 @@ impl Lubricant {
 }
 
 /// The rib film's traction force as `rib::rib_film_traction` takes its arguments.
-pub(crate) type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
+pub type RibFilm = fn(&Rheology, &ViscosityTable, f64, f64, f64, f64, f64, f64) -> f64;
 
 /// Boundary traction coefficient of [W25]: (-0.1 + 22.28 s) exp(-181.46 s) + 0.1.
 pub fn boundary_mu(slide_roll: f64) -> f64 {
@@ -420,10 +359,13 @@ mod tests {
         let heat = thermal_reduction(0.03 * 0.033 / 0.13 * ue * ue, ph / 2.181e11, s);
         let h = heat * h_iso;
         let film = rib_film_traction(&oil(0.0).rheology, &oil(0.0).viscosity, vs, h, ue, a, b, ph);
-        let force = |lambda: f64| oil(h / lambda).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio);
+        let force = |lambda: f64| oil(h / lambda).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio, rib_film_traction);
         // full film
         assert!((force(1.5) - film).abs() < 1e-12 * film && (force(6.0) - film).abs() < 1e-12 * film);
-        assert_eq!(oil(0.0).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio), film);
+        assert_eq!(
+            oil(0.0).rib_force(q, vs, ue, s, h_iso, a, b, ph, Mixed::FilmRatio, rib_film_traction),
+            film
+        );
         // boundary
         let boundary = q * boundary_mu(s);
         assert!((force(0.009) - boundary).abs() < 1e-12 * boundary);

@@ -38,7 +38,7 @@ pub(crate) mod x4 {
 }
 
 /// [`super::rib::rib_film_traction`] with the stress of two rings of its Gauss sum at a time:
-/// the same force to rounding (the dynamic model's, through `Lubricant::rib_force_with`).
+/// the same force to rounding (the dynamic model's, through `Lubricant::rib_force`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn rib_film_traction(r: &Rheology, viscosity: &ViscosityTable, v_s: f64, h: f64, u_e: f64, a: f64, b: f64, p_h: f64) -> f64 {
     rib_film_with(r, viscosity, v_s, h, u_e, a, b, p_h, x2::rib_rings)

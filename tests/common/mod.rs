@@ -43,3 +43,19 @@ pub fn element(preset: &str, ints: &[(u32, i32)], reals: &[(u32, f64)]) -> Simul
 pub fn solved(preset: &str, set: &[(u32, f64)]) -> trb::model::Outputs {
     element(preset, &[], set).outputs().unwrap().clone()
 }
+
+/// Amplitude of the Hann-windowed Fourier sum of `x` (sampled every `dt`, its mean removed) at
+/// frequency `f`.
+#[allow(dead_code)] // not every test file that includes `common` uses it
+pub fn amplitude(x: &[f64], dt: f64, f: f64) -> f64 {
+    let n = x.len();
+    let mean = x.iter().sum::<f64>() / n as f64;
+    let (mut c, mut s) = (0.0, 0.0);
+    for (k, v) in x.iter().enumerate() {
+        let w = 0.5 - 0.5 * (std::f64::consts::TAU * k as f64 / (n - 1) as f64).cos();
+        let (si, co) = (std::f64::consts::TAU * f * k as f64 * dt).sin_cos();
+        c += w * (v - mean) * co;
+        s += w * (v - mean) * si;
+    }
+    c.hypot(s)
+}

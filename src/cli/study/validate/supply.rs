@@ -152,6 +152,15 @@ fn increasing(v: &[f64]) -> bool {
     v.windows(2).all(|w| w[1] > w[0])
 }
 
+/// Whether `value(outer, inner)` rises along `inner` at every `outer`, and the chains.
+fn rising(outer: &[f64], inner: &[f64], value: impl Fn(f64, f64) -> f64) -> (bool, String) {
+    let rows: Vec<Vec<f64>> = outer.iter().map(|&o| inner.iter().map(|&i| value(o, i)).collect()).collect();
+    (
+        rows.iter().all(|v| increasing(v)),
+        rows.iter().map(|v| chain(v)).collect::<Vec<_>>().join("; "),
+    )
+}
+
 fn chain(v: &[f64]) -> String {
     v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(" → ")
 }
@@ -268,24 +277,9 @@ pub(super) fn section(plan: &Plan, ledger: &mut Ledger) -> Result<String, CliErr
     let mut speed = Vec::new();
     let mut radial = Vec::new();
     for law in 0..COLUMNS.len() {
-        let per_speed: Vec<Vec<f64>> = runs
-            .speeds
-            .iter()
-            .map(|&n| runs.loads.iter().map(|&fa| runs.skew_at(grease, law, n, fa)).collect())
-            .collect();
-        axial.push((
-            per_speed.iter().all(|v| increasing(v)),
-            per_speed.iter().map(|v| chain(v)).collect::<Vec<_>>().join("; "),
-        ));
-        let per_load: Vec<Vec<f64>> = runs
-            .loads
-            .iter()
-            .map(|&fa| runs.speeds.iter().map(|&n| runs.skew_at(grease, law, n, fa)).collect())
-            .collect();
-        speed.push((
-            per_load.iter().all(|v| increasing(v)),
-            per_load.iter().map(|v| chain(v)).collect::<Vec<_>>().join("; "),
-        ));
+        let skew = |n: f64, fa: f64| runs.skew_at(grease, law, n, fa);
+        axial.push(rising(&runs.speeds, &runs.loads, |n, fa| skew(n, fa)));
+        speed.push(rising(&runs.loads, &runs.speeds, |fa, n| skew(n, fa)));
         let v: Vec<f64> = runs
             .radial
             .iter()
