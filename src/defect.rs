@@ -23,6 +23,7 @@
 //! energy and the energy books close. A defect longer than the roller's diameter is not a
 //! local defect (the roller would fall to its bottom) and is refused.
 
+use crate::geometry::Vec2;
 use std::f64::consts::PI;
 
 /// The defect's edge shape (`defect.edge`).
@@ -71,17 +72,25 @@ pub struct CupDefect {
     pub edge: Edge,
     /// The largest drop (m): min(depth, R − √(R² − (L/2)²)).
     pub max_drop: f64,
+    /// The raceway's middle (x, r) in the axial plane and its generatrix direction: where a
+    /// contact point lies across the raceway ([`CupDefect::station`]).
+    mid: Vec2,
+    dir: Vec2,
 }
 
 impl CupDefect {
-    /// The defect of `p` on a raceway under rollers of (mean) radius `roller_radius`; None
-    /// without a defect.
-    pub fn new(p: &DefectParameters, roller_radius: f64) -> Option<CupDefect> {
+    /// The defect of `p` on the cup raceway whose slice contact points (x, r) are `points`
+    /// (from one end of the contact line to the other), under rollers of (mean) radius
+    /// `roller_radius`; None without a defect.
+    pub fn new(p: &DefectParameters, roller_radius: f64, points: &[Vec2]) -> Option<CupDefect> {
         if p.ring != DefectRing::Cup {
             return None;
         }
         let half_length = 0.5 * p.length;
         let sag = roller_radius - (roller_radius * roller_radius - half_length * half_length).max(0.0).sqrt();
+        let (a, e) = (points[0], points[points.len() - 1]);
+        let (dx, dr) = (e[0] - a[0], e[1] - a[1]);
+        let len = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
         Some(CupDefect {
             angle: p.angle,
             half_length,
@@ -90,7 +99,16 @@ impl CupDefect {
             roller_radius,
             edge: p.edge,
             max_drop: p.depth.min(sag),
+            mid: [0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1])],
+            dir: [dx / len, dr / len],
         })
+    }
+
+    /// The generatrix station (m, from the raceway's middle) of a point at axial position `x`
+    /// and distance `rho` from the bearing axis.
+    #[inline]
+    pub fn station(&self, x: f64, rho: f64) -> f64 {
+        (x - self.mid[0]) * self.dir[0] + (rho - self.mid[1]) * self.dir[1]
     }
 
     /// The drop (m) of a contact point at azimuth `psi`, radius `rho` from the bearing axis
@@ -130,13 +148,13 @@ impl CupDefect {
         }
     }
 
-    /// Whether a roller whose centre is at azimuth `psi` and whose contact lies `rho` from the
-    /// axis can touch the defect with a slice within `reach` (m) of the centre along the
-    /// rolling direction: the cheap test before the contact closure.
+    /// Whether a roller whose centre is at azimuth `psi`, `rho` from the axis, can touch the
+    /// defect: its slices' contacts lie within its radius of its azimuth along the rolling
+    /// direction. The cheap test before the contact closure.
     #[inline]
-    pub fn near(&self, psi: f64, rho: f64, reach: f64) -> bool {
+    pub fn near(&self, psi: f64, rho: f64) -> bool {
         let dpsi = (psi - self.angle + PI).rem_euclid(2.0 * PI) - PI;
-        (dpsi * rho).abs() < self.half_length + reach
+        (dpsi * rho).abs() < self.half_length + self.roller_radius
     }
 }
 
@@ -202,6 +220,9 @@ pub fn validate(p: &DefectParameters, raceway_length: f64, circumference: f64, r
 mod tests {
     use super::*;
 
+    /// A cup contact line 20 mm long at 0.1 m from the axis.
+    const LINE: [Vec2; 2] = [[0.0, 0.1], [0.02, 0.1]];
+
     fn defect(edge: Edge, depth: f64) -> CupDefect {
         let p = DefectParameters {
             ring: DefectRing::Cup,
@@ -211,7 +232,7 @@ mod tests {
             depth,
             edge,
         };
-        CupDefect::new(&p, 10e-3).unwrap()
+        CupDefect::new(&p, 10e-3, &LINE).unwrap()
     }
 
     /// The drop is zero outside the pit and at its edges, largest in its middle at the
@@ -249,7 +270,7 @@ mod tests {
             depth: 1e-3,
             edge: Edge::Sharp,
         };
-        let wrap = CupDefect::new(&p, 10e-3).unwrap();
+        let wrap = CupDefect::new(&p, 10e-3, &LINE).unwrap();
         assert!(wrap.drop(3.14, rho, 0.0).0 > 0.0);
     }
 

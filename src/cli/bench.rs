@@ -360,12 +360,7 @@ fn long_runs(results: &[ScenarioResult], seconds: f64) -> Result<Vec<LongRun>, C
     }
     // Real time at default settings: the default integrator at the preset's tolerance,
     // whatever the window says is cheapest
-    let default = Method {
-        integrator: trb::model::AUTOMATIC_INTEGRATOR as i32,
-        setting: trb::simulation::Simulation::new(w25.scenario.bearing.bearing.clone())
-            .params()
-            .tolerance,
-    };
+    let default = default_method(&w25.scenario);
     if picks.iter().all(|p| p.1 != default) {
         let window_error = w25
             .runs
@@ -377,10 +372,7 @@ fn long_runs(results: &[ScenarioResult], seconds: f64) -> Result<Vec<LongRun>, C
     }
     // At the communication step of the FMU's default experiment (a system simulation's step,
     // not the benchmark window's 0.1 ms, which would cap the implicit method's steps)
-    let mut scenario = w25.scenario.clone();
-    scenario.step = LONG_RUN_STEP;
-    scenario.n_steps = ((seconds - scenario.start_time) / scenario.step).round().max(1.0) as usize;
-    scenario.stop_time = scenario.start_time + seconds;
+    let scenario = long_run_scenario(&w25.scenario, seconds);
     let mut out = Vec::new();
     for (why, method, window_error) in picks {
         println!(
@@ -402,6 +394,25 @@ fn long_runs(results: &[ScenarioResult], seconds: f64) -> Result<Vec<LongRun>, C
         });
     }
     Ok(out)
+}
+
+/// The default settings of the scenario's bearing: the automatic integrator at its tolerance.
+fn default_method(scenario: &Scenario) -> Method {
+    Method {
+        integrator: trb::model::AUTOMATIC_INTEGRATOR as i32,
+        setting: trb::simulation::Simulation::new(scenario.bearing.bearing.clone())
+            .params()
+            .tolerance,
+    }
+}
+
+/// `scenario` (its inputs) over `seconds` simulated in the long runs' communication step.
+fn long_run_scenario(scenario: &Scenario, seconds: f64) -> Scenario {
+    let mut s = scenario.clone();
+    s.step = LONG_RUN_STEP;
+    s.n_steps = ((seconds - s.start_time) / s.step).round().max(1.0) as usize;
+    s.stop_time = s.start_time + seconds;
+    s
 }
 
 fn sci(v: f64) -> String {

@@ -71,14 +71,8 @@ pub(crate) struct Constants {
     half_clearance: f64,
     pub(crate) lobes: u32,
     waveform: f64,
-    /// A local defect on the cup (`crate::defect`), the raceway's middle (x, r) and its
-    /// generatrix direction, for the station of a contact point across the raceway.
+    /// A local defect on the cup (`crate::defect`).
     cup_defect: Option<CupDefect>,
-    cup_mid: [f64; 2],
-    cup_dir: [f64; 2],
-    /// A slice's contact lies within this of its roller's azimuth along the rolling direction
-    /// (the roller's radius): the reach of the cheap test whether a roller is near the defect.
-    defect_reach: f64,
     dd_half: Vec<f64>,
     damping: f64,
     /// 2 zeta sqrt(m / s): the slice damping coefficient is this times sqrt(dq/d delta).
@@ -257,18 +251,7 @@ impl Constants {
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
-            cup_defect: CupDefect::new(&p.defect, b.roller_mean_radius()),
-            cup_mid: {
-                let (a, z) = (g.cup.point[0], g.cup.point[g.cup.point.len() - 1]);
-                [0.5 * (a[0] + z[0]), 0.5 * (a[1] + z[1])]
-            },
-            cup_dir: {
-                let (a, z) = (g.cup.point[0], g.cup.point[g.cup.point.len() - 1]);
-                let (dx, dr) = (z[0] - a[0], z[1] - a[1]);
-                let n = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
-                [dx / n, dr / n]
-            },
-            defect_reach: b.roller_mean_radius(),
+            cup_defect: CupDefect::new(&p.defect, b.roller_mean_radius(), &g.cup.point),
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
             damping: p.contact_damping,
             damping_factor: 2.0 * p.contact_damping * (g.roller_mass / g.slices as f64).sqrt(),
@@ -671,8 +654,7 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
     };
     if let (true, Some(d)) = (defect, &c.cup_defect) {
         let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
-        let s = (q[0] - c.cup_mid[0]) * c.cup_dir[0] + (rho - c.cup_mid[1]) * c.cup_dir[1];
-        let (drop, drop_psi) = d.drop(psi, rho, s);
+        let (drop, drop_psi) = d.drop(psi, rho, d.station(q[0], rho));
         gap -= drop;
         gap_psi -= drop_psi;
     }
@@ -1274,13 +1256,9 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let near_defect = c.cup_defect.is_some_and(|d| {
-        d.near(
-            libm::atan2(pos[2], pos[1]),
-            (pos[1] * pos[1] + pos[2] * pos[2]).sqrt(),
-            c.defect_reach,
-        )
-    });
+    let near_defect = c
+        .cup_defect
+        .is_some_and(|d| d.near(libm::atan2(pos[2], pos[1]), (pos[1] * pos[1] + pos[2] * pos[2]).sqrt()));
     let cup_sum = if c.lobes > 0 || near_defect {
         race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect))
     } else {

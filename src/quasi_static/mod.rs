@@ -418,20 +418,13 @@ impl QuasiStatic {
         let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
         let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
         let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
-        let cup_defect = crate::defect::CupDefect::new(&params.defect, bearing.roller_mean_radius());
+        let cup_defect = crate::defect::CupDefect::new(&params.defect, bearing.roller_mean_radius(), &geometry.cup.point);
         let defect_tables = if cup_defect.is_some() {
             vec![cup_table.clone(); z]
         } else {
             Vec::new()
         };
-        let defect_station = {
-            let pts = &geometry.cup.point;
-            let (a, e) = (pts[0], pts[pts.len() - 1]);
-            let (dx, dr) = (e[0] - a[0], e[1] - a[1]);
-            let len = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
-            let mid = [0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1])];
-            pts.iter().map(|p| ((p[0] - mid[0]) * dx + (p[1] - mid[1]) * dr) / len).collect()
-        };
+        let defect_station = cup_defect.map_or_else(Vec::new, |d| geometry.cup.point.iter().map(|p| d.station(p[0], p[1])).collect());
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));

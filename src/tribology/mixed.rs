@@ -72,10 +72,7 @@ impl Mixed {
     /// The boundary coefficient at slide-to-roll ratio `slide_roll`.
     #[inline(always)]
     pub fn boundary_mu(self, slide_roll: f64) -> f64 {
-        match self {
-            Mixed::FilmRatio => boundary_mu(slide_roll),
-            Mixed::Weight(_) => SKF_MU_BL / W25_BOUNDARY_PLATEAU * boundary_mu(slide_roll),
-        }
+        self.boundary_scale() * boundary_mu(slide_roll)
     }
 
     /// The factor on [W25]'s boundary law: 1, or SKF's coefficient over [W25]'s plateau.

@@ -8,8 +8,8 @@
 //! windows): the [W25] axial case, its deflected case, the combined load of a drivetrain, and
 //! the two ends of [W25]'s speed and axial-load series with deflection.
 
-use super::precision::{self, Method, Trace};
-use super::{ScenarioResult, LONG_RUN_STEP};
+use super::precision::{self, Trace};
+use super::{default_method, long_run_scenario, ScenarioResult};
 use crate::cli::report::table;
 use std::fmt::Write as _;
 
@@ -37,16 +37,8 @@ pub(super) fn measure(results: &[ScenarioResult], seconds: f64) -> Vec<Row> {
         let Some(r) = results.iter().find(|r| r.name == case) else {
             continue;
         };
-        let default = Method {
-            integrator: trb::model::AUTOMATIC_INTEGRATOR as i32,
-            setting: trb::simulation::Simulation::new(r.scenario.bearing.bearing.clone())
-                .params()
-                .tolerance,
-        };
-        let mut scenario = r.scenario.clone();
-        scenario.step = LONG_RUN_STEP;
-        scenario.n_steps = ((seconds - scenario.start_time) / scenario.step).round().max(1.0) as usize;
-        scenario.stop_time = scenario.start_time + seconds;
+        let default = default_method(&r.scenario);
+        let scenario = long_run_scenario(&r.scenario, seconds);
         println!("real time: {seconds} s of {case} at default settings ...");
         let outcome = precision::run(&scenario, &default);
         if let Ok(t) = &outcome {

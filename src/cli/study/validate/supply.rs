@@ -44,9 +44,8 @@ struct Point {
     skf: f64,
 }
 
-fn element(supply: i32, law: usize, fidelity: i32, rpm: f64, fa: f64, fy: f64) -> Result<Simulation, CliError> {
-    let bearing = Bearing::preset(PRESET).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
-    let mut s = Simulation::new(bearing);
+fn element(bearing: &Bearing, supply: i32, law: usize, fidelity: i32, rpm: f64, fa: f64, fy: f64) -> Result<Simulation, CliError> {
+    let mut s = Simulation::new(bearing.clone());
     let fail = |e: trb::simulation::AccessError| CliError::failed(format!("{PRESET}: {e}"));
     s.set_integer(var::FIDELITY, fidelity).map_err(fail)?;
     s.set_integer(var::SUPPLY, supply).map_err(fail)?;
@@ -61,13 +60,13 @@ fn element(supply: i32, law: usize, fidelity: i32, rpm: f64, fa: f64, fy: f64) -
 
 /// The point at (`rpm`, `fa`, `fy`) under supply index `supply` and mixed law `law`, its
 /// dynamic run `duration` long in 5 ms steps.
-fn point(supply: usize, law: usize, rpm: f64, fa: f64, fy: f64, duration: f64) -> Result<Point, CliError> {
+fn point(b: &Bearing, supply: usize, law: usize, rpm: f64, fa: f64, fy: f64, duration: f64) -> Result<Point, CliError> {
     let code = SUPPLIES[supply].1;
-    let statics = element(code, law, 0, rpm, fa, fy)?
+    let statics = element(b, code, law, 0, rpm, fa, fy)?
         .outputs()
         .map_err(|e| CliError::failed(format!("{e}")))?
         .clone();
-    let mut dynamic = element(code, law, 1, rpm, fa, fy)?;
+    let mut dynamic = element(b, code, law, 1, rpm, fa, fy)?;
     let step = 5e-3;
     for k in 0..(duration / step).round() as usize {
         dynamic
@@ -76,7 +75,6 @@ fn point(supply: usize, law: usize, rpm: f64, fa: f64, fy: f64, duration: f64) -
     }
     let o = dynamic.outputs().map_err(|e| CliError::failed(format!("{e}")))?;
     let skew = (o.skew_mean.abs().to_degrees(), o.skew_max.abs().to_degrees());
-    let b = Bearing::preset(PRESET).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
     let k_rs = trb::tribology::Supply::from_index(code as i64).map_or(0.0, |s| s.k_rs());
     let lub = skf::Lubrication {
         k_rs,
@@ -95,8 +93,9 @@ fn point(supply: usize, law: usize, rpm: f64, fa: f64, fy: f64, duration: f64) -
     })
 }
 
-/// Every run of the section.
+/// Every run of the section, on the preset `bearing`.
 struct Runs {
+    bearing: Bearing,
     axial: Vec<Point>,
     radial: Vec<Point>,
     speeds: Vec<f64>,
@@ -111,21 +110,23 @@ impl Runs {
         let loads = plan.pick(&[2e3, 5e3, 8e3], &[2e3, 8e3]);
         let radial_loads = plan.pick(&[0.0, 3e3, 6e3], &[0.0, 6e3]);
         let duration = if plan.quick { 0.01 } else { 0.02 };
+        let bearing = Bearing::preset(PRESET).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
         let mut axial = Vec::new();
         let mut radial = Vec::new();
         for supply in 0..SUPPLIES.len() {
             for law in 0..COLUMNS.len() {
                 for &rpm in &speeds {
                     for &fa in &loads {
-                        axial.push(point(supply, law, rpm, fa, 0.0, duration)?);
+                        axial.push(point(&bearing, supply, law, rpm, fa, 0.0, duration)?);
                     }
                 }
                 for &fy in &radial_loads {
-                    radial.push(point(supply, law, 1500.0, 5e3, fy, duration)?);
+                    radial.push(point(&bearing, supply, law, 1500.0, 5e3, fy, duration)?);
                 }
             }
         }
         Ok(Runs {
+            bearing,
             axial,
             radial,
             speeds,
@@ -168,7 +169,6 @@ fn chain(v: &[f64]) -> String {
 /// The section, with its comparisons entered in `ledger`.
 pub(super) fn section(plan: &Plan, ledger: &mut Ledger) -> Result<String, CliError> {
     let runs = Runs::run(plan)?;
-    let b = Bearing::preset(PRESET).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
     let mut md = format!(
         "## 8. Lubricant supply and roller skew: the 32008 in grease and in flooded oil\n\n\
          Measured skew of greased tapered roller bearings: Yang, Danyluk & Hoeprich, an LM501300-series bearing \
@@ -182,7 +182,7 @@ pub(super) fn section(plan: &Plan, ledger: &mut Ledger) -> Result<String, CliErr
          `skew.mean` and `skew.max` {:.0} ms after the steady start. Nothing is tuned to the measurements.\n\n",
         MEASURED.0,
         MEASURED.1,
-        b.oil_temperature - 273.15,
+        runs.bearing.oil_temperature - 273.15,
         runs.duration * 1e3
     );
     let head = [
