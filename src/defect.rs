@@ -1,35 +1,42 @@
-//! A local defect on the cup raceway (a spall or a dent): where it is, its size, its edges, and
-//! how far a roller drops into it (parameters `defect.*`).
+//! A local defect (a spall or a dent) on the cup raceway, on the cone raceway or on one
+//! roller: where it is, its size, its edges, and how far a surface drops into it (parameters
+//! `defect.*`).
 //!
-//! The defect is a pit in the raceway: `length` along the rolling direction (an arc of the
-//! raceway at its mid radius), `width` across it (along the generatrix, centred on the
-//! raceway's middle), `depth` below the surface, centred at the azimuth `angle` (measured like
-//! `roller[j].azimuth`: from +y towards +z). A roller that stands over it loses contact
-//! interference by the drop d of its surface into the pit:
+//! The defect is a pit: `length` along the rolling direction (an arc of the raceway at its mid
+//! radius, or of the roller at its mean radius), `width` across it (along the generatrix,
+//! centred on the raceway's or the roller's middle), `depth` below the surface, centred at
+//! `angle`: on the cup at that azimuth (measured like `roller[j].azimuth`: from +y towards +z);
+//! on the cone at that angle of the cone's own material frame, which coincides with the
+//! azimuth at t = 0 and turns with the cone; on roller `defect.roller` at that angle of its
+//! circumference, measured about its axis from its outward normal (towards the cup) at t = 0,
+//! turning with its spin. A contact over it loses interference by the drop d of the one
+//! surface into the other's pit:
 //!
 //! - sharp edges (`defect.edge` = 0; Sawalhi & Randall, Mech. Syst. Signal Process. 22 (2008)
-//!   1924, for a ball; the same geometry for a roller's circle): a rigid circle of radius R
-//!   over a pit of length L cannot reach below the chord its two edges cut, so with its
-//!   contact point at a distance e from the nearer edge, d = min(H, R − √(R² − e²)). The drop
-//!   grows from the entry edge, is largest in the middle (R − √(R² − (L/2)²) unless the pit is
-//!   shallower), and falls at the exit edge with the slope e / √(R² − e²): the roller strikes
-//!   the far edge.
+//!   1924, for a ball): the surface bridging a pit of length L cannot reach below the chord
+//!   its two edges cut. In the rolling direction the roller of radius R and the raceway of
+//!   signed principal radius r (+ convex cone, − concave cup) curve apart by the relative
+//!   curvature 1/R_e = 1/R + 1/r, so with the contact point at a distance e from the nearer
+//!   edge, d = min(H, R_e − √(R_e² − e²)) (for a ball over a flat race R_e is the ball's
+//!   radius, Sawalhi & Randall's case). The drop grows from the entry edge, is largest in the
+//!   middle (R_e − √(R_e² − (L/2)²) unless the pit is shallower), and falls at the exit edge
+//!   with the slope e / √(R_e² − e²): the roller strikes the far edge.
 //! - rounded edges (`defect.edge` = 1): a worn dent, d = d_max sin(π (x + L/2) / L) over the
-//!   pit, with the same largest drop d_max = min(H, R − √(R² − (L/2)²)); smooth in and out.
+//!   pit, with the same largest drop d_max = min(H, R_e − √(R_e² − (L/2)²)); smooth in and out.
 //!
 //! A roller slice is over the defect when its contact point is: the slice is the model's
-//! resolution across the raceway. The drop's slope along the azimuth tilts the raceway normal
-//! as a lobe's does (`dynamic/contacts.rs`), so the contact force stays the gradient of its
-//! energy and the energy books close. A defect longer than the roller's diameter is not a
-//! local defect (the roller would fall to its bottom) and is refused.
+//! resolution across the raceway. The drop's slope along the rolling direction tilts the
+//! contact normal as a lobe's does (`dynamic/contacts.rs`), so the contact force stays the
+//! gradient of its energy and the energy books close. A defect longer than the roller's
+//! diameter is not a local defect (the roller would fall to its bottom) and is refused.
 
-use crate::geometry::Vec2;
+use crate::geometry::{ContactLine, Vec2};
 use std::f64::consts::PI;
 
 /// The defect's edge shape (`defect.edge`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Edge {
-    /// Sharp edges: the roller's circle limits its drop (Sawalhi & Randall 2008).
+    /// Sharp edges: the surfaces' relative curvature limits the drop (Sawalhi & Randall 2008).
     #[default]
     Sharp = 0,
     /// Rounded edges: a half-sine dent.
@@ -44,12 +51,28 @@ pub enum DefectRing {
     None = 0,
     /// On the cup raceway.
     Cup = 1,
+    /// On the cone raceway, turning with the cone.
+    Cone = 2,
+    /// On one roller's surface (`defect.roller`), turning with its spin.
+    Roller = 3,
+}
+
+impl DefectRing {
+    /// The location of `defect.ring`'s value, None outside 0..=3.
+    pub fn from_index(i: i32) -> Option<DefectRing> {
+        [DefectRing::None, DefectRing::Cup, DefectRing::Cone, DefectRing::Roller]
+            .get(usize::try_from(i).ok()?)
+            .copied()
+    }
 }
 
 /// The defect parameters as the user sets them.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DefectParameters {
     pub ring: DefectRing,
+    /// The defective roller (1 ..= Z) for a roller defect.
+    #[serde(default = "first_roller")]
+    pub roller: u32,
     pub angle: f64,
     pub length: f64,
     pub width: f64,
@@ -57,48 +80,127 @@ pub struct DefectParameters {
     pub edge: Edge,
 }
 
-/// A cup defect in the units the contact laws take: half-angles and the drop's limits.
+fn first_roller() -> u32 {
+    1
+}
+
+impl Default for DefectParameters {
+    fn default() -> DefectParameters {
+        DefectParameters {
+            ring: DefectRing::None,
+            roller: 1,
+            angle: 0.0,
+            length: 0.0,
+            width: 0.0,
+            depth: 0.0,
+            edge: Edge::Sharp,
+        }
+    }
+}
+
+/// The pit's profile along the rolling direction: half its length, its depth, the radius
+/// whose circle bridges it, its edges and its largest drop.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CupDefect {
-    /// Azimuth of the defect's centre (rad).
-    pub angle: f64,
-    /// Half its length (m) and half its width (m).
+pub struct Pit {
     pub half_length: f64,
-    pub half_width: f64,
-    /// Its depth (m).
     pub depth: f64,
-    /// The roller radius whose circle limits the drop (m).
-    pub roller_radius: f64,
+    /// The radius of relative curvature R_e of the two surfaces in the rolling direction (m).
+    pub edge_radius: f64,
     pub edge: Edge,
-    /// The largest drop (m): min(depth, R − √(R² − (L/2)²)).
+    /// The largest drop (m): min(depth, R_e − √(R_e² − (L/2)²)).
     pub max_drop: f64,
+}
+
+impl Pit {
+    fn new(p: &DefectParameters, edge_radius: f64) -> Pit {
+        let half_length = 0.5 * p.length;
+        let sag = edge_radius - (edge_radius * edge_radius - half_length * half_length).max(0.0).sqrt();
+        Pit {
+            half_length,
+            depth: p.depth,
+            edge_radius,
+            edge: p.edge,
+            max_drop: p.depth.min(sag),
+        }
+    }
+
+    /// The drop (m) at `x` (m) from the pit's centre along the rolling direction, and its
+    /// derivative in x. Zero outside the pit.
+    #[inline]
+    pub fn drop(&self, x: f64) -> (f64, f64) {
+        if x.abs() >= self.half_length {
+            return (0.0, 0.0);
+        }
+        match self.edge {
+            Edge::Sharp => {
+                // distance from the nearer edge; the bridging circle's sag there
+                let e = self.half_length - x.abs();
+                let r = self.edge_radius;
+                let root = (r * r - e * e).max(0.0).sqrt();
+                let sag = r - root;
+                if sag >= self.depth {
+                    (self.depth, 0.0)
+                } else {
+                    // d(sag)/dx = e / root * de/dx, de/dx = -sign(x)
+                    let slope = if root > 0.0 { e / root } else { 0.0 };
+                    (sag, -x.signum() * slope)
+                }
+            }
+            Edge::Rounded => {
+                let phase = PI * (x + self.half_length) / (2.0 * self.half_length);
+                let (s, c) = libm::sincos(phase);
+                (self.max_drop * s, self.max_drop * c * PI / (2.0 * self.half_length))
+            }
+        }
+    }
+}
+
+/// The angle `a` − `b` wrapped to (−π, π].
+#[inline]
+fn wrapped(a: f64, b: f64) -> f64 {
+    (a - b + PI).rem_euclid(2.0 * PI) - PI
+}
+
+/// The relative-curvature radius R_e of a roller of radius `roller_radius` on the raceway
+/// `line` (its principal radius in the rolling direction at the middle slice).
+fn edge_radius(roller_radius: f64, line: &ContactLine) -> f64 {
+    let r = line.raceway_curvature_radius[line.raceway_curvature_radius.len() / 2];
+    1.0 / (1.0 / roller_radius + 1.0 / r)
+}
+
+/// A raceway defect (cup or cone) in the units the contact laws take.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RacewayDefect {
+    /// Angle of the defect's centre in the ring's frame (rad).
+    pub angle: f64,
+    /// Half its width (m).
+    pub half_width: f64,
+    pub pit: Pit,
+    /// How far from a roller's azimuth along the rolling direction its slices' contacts reach
+    /// (m): its radius.
+    roller_radius: f64,
     /// The raceway's middle (x, r) in the axial plane and its generatrix direction: where a
-    /// contact point lies across the raceway ([`CupDefect::station`]).
+    /// contact point lies across the raceway ([`RacewayDefect::station`]).
     mid: Vec2,
     dir: Vec2,
 }
 
-impl CupDefect {
-    /// The defect of `p` on the cup raceway whose slice contact points (x, r) are `points`
-    /// (from one end of the contact line to the other), under rollers of (mean) radius
-    /// `roller_radius`; None without a defect.
-    pub fn new(p: &DefectParameters, roller_radius: f64, points: &[Vec2]) -> Option<CupDefect> {
-        if p.ring != DefectRing::Cup {
+impl RacewayDefect {
+    /// The defect of `p` if it sits on `ring` (cup or cone), whose raceway is `line`, under
+    /// rollers of (mean) radius `roller_radius`; None otherwise.
+    pub fn new(p: &DefectParameters, ring: DefectRing, roller_radius: f64, line: &ContactLine) -> Option<RacewayDefect> {
+        if p.ring != ring || !matches!(ring, DefectRing::Cup | DefectRing::Cone) {
             return None;
         }
-        let half_length = 0.5 * p.length;
-        let sag = roller_radius - (roller_radius * roller_radius - half_length * half_length).max(0.0).sqrt();
+        let points = &line.point;
         let (a, e) = (points[0], points[points.len() - 1]);
         let (dx, dr) = (e[0] - a[0], e[1] - a[1]);
         let len = (dx * dx + dr * dr).sqrt().max(f64::MIN_POSITIVE);
-        Some(CupDefect {
+        Some(RacewayDefect {
             angle: p.angle,
-            half_length,
             half_width: 0.5 * p.width,
-            depth: p.depth,
+            pit: Pit::new(p, edge_radius(roller_radius, line)),
             roller_radius,
-            edge: p.edge,
-            max_drop: p.depth.min(sag),
             mid: [0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1])],
             dir: [dx / len, dr / len],
         })
@@ -111,58 +213,87 @@ impl CupDefect {
         (x - self.mid[0]) * self.dir[0] + (rho - self.mid[1]) * self.dir[1]
     }
 
-    /// The drop (m) of a contact point at azimuth `psi`, radius `rho` from the bearing axis
-    /// and generatrix station `s` (from the raceway's middle), and the drop's derivative along
-    /// the azimuth (m/rad). Zero outside the defect.
+    /// The drop (m) of a contact point at angle `psi` of the ring's frame, radius `rho` from
+    /// the bearing axis and generatrix station `s` (from the raceway's middle), and the drop's
+    /// derivative along that angle (m/rad). Zero outside the defect.
     #[inline]
     pub fn drop(&self, psi: f64, rho: f64, s: f64) -> (f64, f64) {
         if s.abs() > self.half_width {
             return (0.0, 0.0);
         }
-        // arc from the defect's centre along the rolling direction
-        let dpsi = (psi - self.angle + PI).rem_euclid(2.0 * PI) - PI;
-        let x = dpsi * rho;
-        if x.abs() >= self.half_length {
-            return (0.0, 0.0);
-        }
-        match self.edge {
-            Edge::Sharp => {
-                // distance from the nearer edge; the circle's sag there
-                let e = self.half_length - x.abs();
-                let r = self.roller_radius;
-                let root = (r * r - e * e).max(0.0).sqrt();
-                let sag = r - root;
-                if sag >= self.depth {
-                    (self.depth, 0.0)
-                } else {
-                    // d(sag)/dx = e / root * de/dx, de/dx = -sign(x); dx/dpsi = rho
-                    let slope = if root > 0.0 { e / root } else { 0.0 };
-                    (sag, -x.signum() * slope * rho)
-                }
-            }
-            Edge::Rounded => {
-                let phase = PI * (x + self.half_length) / (2.0 * self.half_length);
-                let (s, c) = libm::sincos(phase);
-                (self.max_drop * s, self.max_drop * c * PI / (2.0 * self.half_length) * rho)
-            }
-        }
+        // arc from the defect's centre along the rolling direction; dx/dpsi = rho
+        let (d, slope) = self.pit.drop(wrapped(psi, self.angle) * rho);
+        (d, slope * rho)
     }
 
-    /// Whether a roller whose centre is at azimuth `psi`, `rho` from the axis, can touch the
-    /// defect: its slices' contacts lie within its radius of its azimuth along the rolling
-    /// direction. The cheap test before the contact closure.
+    /// Whether a roller whose centre is at angle `psi` of the ring's frame, `rho` from the
+    /// axis, can touch the defect: its slices' contacts lie within its radius of its azimuth
+    /// along the rolling direction. The cheap test before the contact closure.
     #[inline]
     pub fn near(&self, psi: f64, rho: f64) -> bool {
-        let dpsi = (psi - self.angle + PI).rem_euclid(2.0 * PI) - PI;
-        (dpsi * rho).abs() < self.half_length + self.roller_radius
+        (wrapped(psi, self.angle) * rho).abs() < self.pit.half_length + self.roller_radius
     }
 }
 
-/// Check the defect parameters against the raceway: `raceway_length` (m) the cup's contact
+/// A defect on one roller's surface in the units the contact laws take: the pit as the cup and
+/// as the cone bridge it (their relative curvatures differ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerDefect {
+    /// The defective roller (0-based).
+    pub roller: usize,
+    /// Angle of the defect's centre on the roller's circumference, from its outward normal at
+    /// t = 0 (rad).
+    pub angle: f64,
+    /// Half its width along the roller's axis (m), centred on the roller's middle.
+    pub half_width: f64,
+    /// The roller's mean radius (m): arcs on its surface are angles times it.
+    pub radius: f64,
+    /// The pit against the cup and against the cone.
+    pub on_cup: Pit,
+    pub on_cone: Pit,
+}
+
+impl RollerDefect {
+    /// The defect of `p` if it sits on a roller, with rollers of mean radius `roller_radius`
+    /// on the raceways `cup` and `cone`.
+    pub fn new(p: &DefectParameters, roller_radius: f64, cup: &ContactLine, cone: &ContactLine) -> Option<RollerDefect> {
+        if p.ring != DefectRing::Roller {
+            return None;
+        }
+        Some(RollerDefect {
+            roller: p.roller.saturating_sub(1) as usize,
+            angle: p.angle,
+            half_width: 0.5 * p.width,
+            radius: roller_radius,
+            on_cup: Pit::new(p, edge_radius(roller_radius, cup)),
+            on_cone: Pit::new(p, edge_radius(roller_radius, cone)),
+        })
+    }
+
+    /// The drop (m) of a contact at body angle `chi` of the roller (from the defect's frame
+    /// origin, turned with the spin) and axial station `s` from the roller's middle, against
+    /// the raceway whose pit is `pit`, and its derivative along the roller's circumference
+    /// (per metre of arc).
+    #[inline]
+    pub fn drop(&self, pit: &Pit, chi: f64, s: f64) -> (f64, f64) {
+        if s.abs() > self.half_width {
+            return (0.0, 0.0);
+        }
+        pit.drop(wrapped(chi, self.angle) * self.radius)
+    }
+}
+
+/// Check the defect parameters against the bearing: `raceway_length` (m) the rollers' contact
 /// length along the generatrix, `circumference` (m) the raceway's at its mid radius, `roller_
-/// diameter` (m) the rollers' mean diameter. The first bad value: its parameter's name and
-/// what is wrong.
-pub fn validate(p: &DefectParameters, raceway_length: f64, circumference: f64, roller_diameter: f64) -> Result<(), (&'static str, String)> {
+/// diameter` (m) the rollers' mean diameter, `rollers` their number. The first bad value: its
+/// parameter's name and what is wrong.
+pub fn validate(
+    p: &DefectParameters,
+    raceway_length: f64,
+    circumference: f64,
+    roller_diameter: f64,
+    rollers: usize,
+) -> Result<(), (&'static str, String)> {
     if p.ring == DefectRing::None {
         return Ok(());
     }
@@ -173,6 +304,12 @@ pub fn validate(p: &DefectParameters, raceway_length: f64, circumference: f64, r
             Err((name, format!("must be finite, got {v}")))
         }
     };
+    if p.ring == DefectRing::Roller && !(1..=rollers).contains(&(p.roller as usize)) {
+        return Err((
+            "defect.roller",
+            format!("must name one of the {rollers} rollers (1 to {rollers}), got {}", p.roller),
+        ));
+    }
     finite("defect.angle", p.angle)?;
     finite("defect.length", p.length)?;
     finite("defect.width", p.width)?;
@@ -196,7 +333,7 @@ pub fn validate(p: &DefectParameters, raceway_length: f64, circumference: f64, r
         return Err((
             "defect.width",
             format!(
-                "{} m reaches outside the raceway: the cup's contact length is {:.4} m",
+                "{} m reaches outside the raceway: the rollers' contact length is {:.4} m",
                 p.width, raceway_length
             ),
         ));
@@ -220,28 +357,37 @@ pub fn validate(p: &DefectParameters, raceway_length: f64, circumference: f64, r
 mod tests {
     use super::*;
 
-    /// A cup contact line 20 mm long at 0.1 m from the axis.
-    const LINE: [Vec2; 2] = [[0.0, 0.1], [0.02, 0.1]];
+    /// A cup contact line 20 mm long at 0.1 m from the axis (concave, radius 0.1 m).
+    fn line() -> ContactLine {
+        let b = crate::bearing::Bearing::preset("TRB130x230").unwrap();
+        let mut line = crate::geometry::Geometry::new(&b, &crate::model::Parameters::from_bearing(&b)).cup;
+        line.point = vec![[0.0, 0.1], [0.02, 0.1]];
+        line.raceway_curvature_radius = vec![-0.1; 2];
+        line
+    }
 
-    fn defect(edge: Edge, depth: f64) -> CupDefect {
+    fn defect(edge: Edge, depth: f64) -> RacewayDefect {
         let p = DefectParameters {
             ring: DefectRing::Cup,
+            roller: 1,
             angle: 0.3,
             length: 2e-3,
             width: 5e-3,
             depth,
             edge,
         };
-        CupDefect::new(&p, 10e-3, &LINE).unwrap()
+        RacewayDefect::new(&p, DefectRing::Cup, 10e-3, &line()).unwrap()
     }
 
     /// The drop is zero outside the pit and at its edges, largest in its middle at the
-    /// circle's sag R − √(R² − (L/2)²) (a shallower pit: its depth), and its azimuthal
+    /// bridging circle's sag R_e − √(R_e² − (L/2)²) (a shallower pit: its depth), and its azimuthal
     /// derivative is the drop's slope (central differences).
     #[test]
     fn the_drop_follows_the_rollers_circle_and_its_slope_is_the_derivative() {
         let rho = 0.1;
-        let sag = 10e-3 - (1e-4_f64 - 1e-6).sqrt();
+        // the roller (10 mm) in the concave cup (0.1 m): R_e = 1 / (1/R - 1/r)
+        let re: f64 = 1.0 / (1.0 / 10e-3 - 1.0 / 0.1);
+        let sag = re - (re * re - 1e-6).sqrt();
         for edge in [Edge::Sharp, Edge::Rounded] {
             let d = defect(edge, 1e-3);
             assert!((d.drop(0.3, rho, 0.0).0 - sag).abs() < 1e-15, "{edge:?}");
@@ -264,13 +410,14 @@ mod tests {
         // across the wrap of the azimuth
         let p = DefectParameters {
             ring: DefectRing::Cup,
+            roller: 1,
             angle: -3.14,
             length: 2e-3,
             width: 5e-3,
             depth: 1e-3,
             edge: Edge::Sharp,
         };
-        let wrap = CupDefect::new(&p, 10e-3, &LINE).unwrap();
+        let wrap = RacewayDefect::new(&p, DefectRing::Cup, 10e-3, &line()).unwrap();
         assert!(wrap.drop(3.14, rho, 0.0).0 > 0.0);
     }
 
@@ -280,13 +427,14 @@ mod tests {
     fn bad_defects_are_refused_by_name() {
         let good = DefectParameters {
             ring: DefectRing::Cup,
+            roller: 1,
             angle: 0.0,
             length: 2e-3,
             width: 5e-3,
             depth: 50e-6,
             edge: Edge::Sharp,
         };
-        let check = |p: DefectParameters| validate(&p, 30e-3, 0.6, 20e-3);
+        let check = |p: DefectParameters| validate(&p, 30e-3, 0.6, 20e-3, 17);
         assert!(check(good).is_ok());
         for (bad, name) in [
             (DefectParameters { width: 40e-3, ..good }, "defect.width"),
@@ -295,6 +443,22 @@ mod tests {
             (DefectParameters { depth: 15e-3, ..good }, "defect.depth"),
             (DefectParameters { depth: -1.0, ..good }, "defect.depth"),
             (DefectParameters { angle: f64::NAN, ..good }, "defect.angle"),
+            (
+                DefectParameters {
+                    ring: DefectRing::Roller,
+                    roller: 18,
+                    ..good
+                },
+                "defect.roller",
+            ),
+            (
+                DefectParameters {
+                    ring: DefectRing::Roller,
+                    roller: 0,
+                    ..good
+                },
+                "defect.roller",
+            ),
         ] {
             let (named, why) = check(bad).unwrap_err();
             assert_eq!(named, name, "{why}");

@@ -24,6 +24,7 @@ pub mod ehl_line;
 pub mod fastmath;
 pub mod fmi;
 pub mod geometry;
+pub mod housing;
 pub mod journal_film;
 pub mod model;
 pub mod model_description;

@@ -138,6 +138,9 @@ pub struct Parameters {
     /// A local defect (`defect.*`, `crate::defect`).
     #[serde(default)]
     pub defect: crate::defect::DefectParameters,
+    /// The cup's radial support (`housing.*`, `crate::housing`).
+    #[serde(default)]
+    pub housing: crate::housing::HousingParameters,
     /// The oil's kinematic viscosity at its temperature (m2/s), set with `eta0` by
     /// [`Parameters::at_oil_temperature`] (0 before: `eta0` over the density at 15 degC).
     #[serde(skip)]
@@ -315,6 +318,7 @@ impl Parameters {
             mixed_lubrication: crate::tribology::MixedLaw::FilmRatio,
             // a healthy bearing
             defect: crate::defect::DefectParameters::default(),
+            housing: crate::housing::HousingParameters::default(),
             oil_nu: 0.0,
         }
     }
@@ -479,7 +483,16 @@ impl Parameters {
                 ),
             );
         }
-        if let Err((name, message)) = crate::defect::validate(&self.defect, b.roller_length, std::f64::consts::PI * b.pitch_diameter, d) {
+        if let Err((name, message)) = crate::defect::validate(
+            &self.defect,
+            b.roller_length,
+            std::f64::consts::PI * b.pitch_diameter,
+            d,
+            b.roller_count,
+        ) {
+            return bad(name, message);
+        }
+        if let Err((name, message)) = self.housing.validate() {
             return bad(name, message);
         }
         Ok(())
@@ -753,9 +766,13 @@ pub struct Outputs {
     pub life_a_iso: f64,
     pub oil_kappa: f64,
     /// Radial force of the bearing on its housing (N): the rollers' contact forces on the cup
-    /// and, with a dynamic cage, the cage land's, resolved on y and z. A rigid housing.
+    /// and, with a dynamic cage, the cage land's, resolved on y and z.
     pub housing_fy: f64,
     pub housing_fz: f64,
+    /// The cup's radial acceleration on its support (m/s², `crate::housing`; 0 with a rigid
+    /// housing).
+    pub cup_ay: f64,
+    pub cup_az: f64,
     /// Tangent stiffness d(reaction_i)/d(q_j), q = (x, y, z, xi, zeta), row-major.
     pub stiffness: [f64; 25],
     /// The oil's dynamic viscosity at the current oil temperature (Pa s).
@@ -827,6 +844,8 @@ impl Outputs {
             oil_kappa,
             housing_fy,
             housing_fz,
+            cup_ay,
+            cup_az,
             stiffness,
             oil_viscosity,
             tilt_max,
@@ -888,6 +907,8 @@ impl Outputs {
         self.oil_kappa.clone_from(oil_kappa);
         self.housing_fy.clone_from(housing_fy);
         self.housing_fz.clone_from(housing_fz);
+        self.cup_ay.clone_from(cup_ay);
+        self.cup_az.clone_from(cup_az);
         self.stiffness.clone_from(stiffness);
         self.oil_viscosity.clone_from(oil_viscosity);
         self.tilt_max.clone_from(tilt_max);
@@ -989,6 +1010,8 @@ impl Outputs {
             self.oil_kappa,
             self.housing_fy,
             self.housing_fz,
+            self.cup_ay,
+            self.cup_az,
             self.oil_viscosity,
             self.tilt_max,
             self.tilt_mean,

@@ -78,6 +78,10 @@ struct State {
     outputs: Outputs,
     time: f64,
     cage_angle: f64,
+    /// Fidelity 0: the turn of a cone or roller defect since the start (rad;
+    /// `QuasiStatic::set_defect_turn`). Fidelity 1 keeps it in its state.
+    #[serde(default)]
+    defect_turn: f64,
     /// Inputs or parameters changed since the outputs were computed.
     dirty: bool,
     /// Warm start of the quasi-static solver (empty before the first solve).
@@ -122,7 +126,7 @@ fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: 
 }
 
 /// Magic and version of the serialized state format.
-const STATE_MAGIC: &[u8; 8] = b"TRBSTAT5";
+const STATE_MAGIC: &[u8; 8] = b"TRBSTAT6";
 
 impl Simulation {
     /// A new element for `bearing`, parameters and inputs at the bearing's defaults.
@@ -144,6 +148,7 @@ impl Simulation {
                 outputs,
                 time: 0.0,
                 cage_angle,
+                defect_turn: 0.0,
                 dirty: true,
                 warm_start: Vec::new(),
                 report: SolveReport::default(),
@@ -190,6 +195,7 @@ impl Simulation {
     pub fn initialize(&mut self, start_time: f64) -> Result<SolveReport, ModelError> {
         self.state.time = start_time;
         self.state.cage_angle = self.state.params.cage_angle0;
+        self.state.defect_turn = 0.0;
         self.state.dirty = true;
         self.state.dynamic = None;
         self.model = None;
@@ -252,6 +258,7 @@ impl Simulation {
                 // at the step's middle
                 let middle = st.inputs.ramped(&st.rates, 0.5 * h);
                 st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&middle) * h);
+                st.defect_turn = wrap_angle(st.defect_turn + m.defect_turn_rate(&middle) * h);
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
@@ -343,12 +350,22 @@ impl Simulation {
         crate::warnings::message(w, st.time, &self.bearing, &st.outputs, &st.inputs)
     }
 
-    /// Kinetic energy stored in the moving bodies (J): the dynamic model's rollers, cage and
-    /// cone translation; 0 for the quasi-static model and before initialisation.
+    /// Kinetic energy stored in the moving bodies (J): the dynamic model's rollers, cage,
+    /// cone translation and a moving housing; 0 for the quasi-static model and before
+    /// initialisation.
     pub fn kinetic_energy(&self) -> f64 {
         match (&self.model, &self.state.dynamic) {
             (Some(Model::Dynamic { dynamic, .. }), Some(st)) => dynamic.kinetic_energy(st),
             _ => 0.0,
+        }
+    }
+
+    /// The housing's books (`crate::housing`): the energy in its support's spring (J) and the
+    /// power its damper dissipates (W); zero for a rigid housing and at fidelity 0.
+    pub fn housing_books(&self) -> (f64, f64) {
+        match (&self.model, &self.state.dynamic) {
+            (Some(Model::Dynamic { dynamic, .. }), Some(st)) => dynamic.housing_books(st),
+            _ => (0.0, 0.0),
         }
     }
 
@@ -410,6 +427,7 @@ impl Simulation {
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs, linear } => {
+                qs.set_defect_turn(st.defect_turn);
                 // a refused solve may have written outputs: the last valid ones are kept
                 let report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
                     Ok(report) => report,
@@ -559,6 +577,9 @@ impl Simulation {
             var::DEFECT_LENGTH => p.defect.length,
             var::DEFECT_WIDTH => p.defect.width,
             var::DEFECT_DEPTH => p.defect.depth,
+            var::HOUSING_MASS => p.housing.mass,
+            var::HOUSING_STIFFNESS => p.housing.stiffness,
+            var::HOUSING_DAMPING => p.housing.damping,
             var::ROLLER_D_D => p.roller_dd[j],
             var::SPEED => i.speed,
             var::XI => i.xi,
@@ -599,6 +620,8 @@ impl Simulation {
             var::FILM_RATIO_FLANGE => o.film_ratio_flange,
             var::HOUSING_FY => o.housing_fy,
             var::HOUSING_FZ => o.housing_fz,
+            var::CUP_AY => o.cup_ay,
+            var::CUP_AZ => o.cup_az,
             var::LIFE_L10M => o.life_l10m,
             var::LIFE_A_ISO => o.life_a_iso,
             var::OIL_KAPPA => o.oil_kappa,
@@ -684,6 +707,9 @@ impl Simulation {
             var::DEFECT_LENGTH => &mut p.defect.length,
             var::DEFECT_WIDTH => &mut p.defect.width,
             var::DEFECT_DEPTH => &mut p.defect.depth,
+            var::HOUSING_MASS => &mut p.housing.mass,
+            var::HOUSING_STIFFNESS => &mut p.housing.stiffness,
+            var::HOUSING_DAMPING => &mut p.housing.damping,
             var::ROLLER_D_D => &mut p.roller_dd[j],
             _ => input_slot(i, row.vr).ok_or(AccessError::UnknownReference(vr))?,
         };
@@ -764,6 +790,7 @@ impl Simulation {
             var::SUPPLY => p.supply as i32,
             var::MIXED_LUBRICATION => p.mixed_lubrication as i32,
             var::DEFECT_RING => p.defect.ring as i32,
+            var::DEFECT_ROLLER => p.defect.roller as i32,
             var::DEFECT_EDGE => p.defect.edge as i32,
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
@@ -806,13 +833,8 @@ impl Simulation {
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
             var::SUPPLY => p.supply = crate::tribology::Supply::from_index(value as i64).unwrap_or(p.supply),
-            var::DEFECT_RING => {
-                p.defect.ring = if value == 0 {
-                    crate::defect::DefectRing::None
-                } else {
-                    crate::defect::DefectRing::Cup
-                }
-            }
+            var::DEFECT_RING => p.defect.ring = crate::defect::DefectRing::from_index(value).unwrap_or(p.defect.ring),
+            var::DEFECT_ROLLER => p.defect.roller = value as u32,
             var::DEFECT_EDGE => {
                 p.defect.edge = if value == 0 {
                     crate::defect::Edge::Sharp

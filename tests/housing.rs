@@ -76,3 +76,90 @@ fn the_housing_force_rings_at_the_roller_pass_frequency_at_fidelity_1() {
     assert!(ripple > 1e-4 * fy, "the load zone's rollers make the force ripple: {ripple}");
     assert!((peak / pass - 1.0).abs() < 0.01, "peak {peak} Hz against {pass} Hz");
 }
+
+/// The natural frequencies (Hz) of the cone (mass `m_c`, free radially) on the bearing's
+/// radial stiffness `k_b` against the cup and housing (mass `m_h`) on its support `k_h`: the
+/// two-mass chain's eigenvalues, ω² from det(K − ω² M) = 0.
+fn chain_modes(m_c: f64, m_h: f64, k_b: f64, k_h: f64) -> (f64, f64) {
+    // m_c m_h w^4 - (k_b m_h + (k_b + k_h) m_c) w^2 + k_b k_h = 0
+    let (a, b, c) = (m_c * m_h, -(k_b * m_h + (k_b + k_h) * m_c), k_b * k_h);
+    let root = (b * b - 4.0 * a * c).sqrt();
+    let w2 = ((-b - root) / (2.0 * a), (-b + root) / (2.0 * a));
+    let hz = |w2: f64| w2.sqrt() / std::f64::consts::TAU;
+    (hz(w2.0), hz(w2.1))
+}
+
+/// The cup on a housing of 10 kg on the default support (1e9 N/m, 2000 N s/m), TRB130x230 at
+/// 3500 rpm, Fx 20 kN, Fy 40 kN:
+/// - it starts where the support carries the load: the first sample's acceleration is a
+///   small part of Fy / m;
+/// - running, its acceleration rings at the rollers' pass frequency through the load zone
+///   (the kinematic Z f_s r_i / (r_i + r_o), within 1 %);
+/// - after Fy steps to 30 kN the cone and the housing ring at the lower natural frequency of
+///   the two-mass chain, cone on the bearing's radial stiffness (`stiffness[2,2]` of the
+///   quasi-static model) and housing on its support. The rollers' mass, which the chain
+///   leaves out, moves with the rings in that mode: the frequency lies between the chain's
+///   without them and with all of them lumped into the cone (2 % margins).
+#[test]
+fn the_cup_on_its_housing_rings_at_the_roller_passes_and_at_its_natural_frequency() {
+    use trb::bearing::Bearing;
+    use trb::model::Parameters;
+    let b = Bearing::preset("TRB130x230").unwrap();
+    let g = trb::geometry::Geometry::new(&b, &Parameters::from_bearing(&b));
+    let mid = g.slices / 2;
+    let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
+    let pass = 17.0 * 3500.0 / 60.0 * ri / (ri + ro);
+    let reals = [
+        (var::SPEED, 3500.0 * RPM),
+        (var::FX, 20e3),
+        (var::FY, 40e3),
+        (var::HOUSING_MASS, 10.0),
+    ];
+    let mut s = common::element("TRB130x230", &[(var::FIDELITY, 1)], &reals);
+    let first = s.outputs().unwrap().cup_ay;
+    let dt = 5e-5;
+    let n = 2000;
+    let mut running = Vec::with_capacity(n);
+    for k in 0..n {
+        s.do_step(k as f64 * dt, dt).unwrap();
+        running.push(s.outputs().unwrap().cup_ay);
+    }
+    let (f_pass, _) = peak(&running, dt, 0.8 * pass, 1.2 * pass);
+    // the load step, then 40 ms at 50 kHz
+    s.set_real(var::FY, 30e3).unwrap();
+    let (t0, dt_ring) = (n as f64 * dt, 2e-5);
+    let mut ringing = Vec::with_capacity(2000);
+    for k in 0..2000 {
+        s.do_step(t0 + k as f64 * dt_ring, dt_ring).unwrap();
+        ringing.push(s.outputs().unwrap().cup_ay);
+    }
+    let (f_ring, _) = peak(&ringing, dt_ring, 200.0, 10e3);
+    let k_b = common::solved("TRB130x230", &[(var::SPEED, 3500.0 * RPM), (var::FX, 20e3), (var::FY, 30e3)]).stiffness[6].abs();
+    let m_c = Parameters::from_bearing(&b).cone_mass;
+    let m_rollers = 17.0 * g.roller_mass;
+    let (light, _) = chain_modes(m_c, 10.0, k_b, 1e9);
+    let (heavy, _) = chain_modes(m_c + m_rollers, 10.0, k_b, 1e9);
+    eprintln!(
+        "first cup.ay {first:.3e} m/s2 (Fy / m = 4e3); running: peak {f_pass:.1} Hz against roller passes {pass:.1} Hz; after the step: peak {f_ring:.0} Hz, the chain's lower mode {heavy:.0} Hz with the rollers lumped into the cone, {light:.0} Hz without (cone {m_c:.2} kg, rollers {m_rollers:.2} kg, bearing {k_b:.3e} N/m)"
+    );
+    assert!(first.abs() < 0.01 * 4e3, "{first}");
+    assert!((f_pass / pass - 1.0).abs() < 0.01, "{f_pass} Hz against {pass} Hz");
+    assert!(
+        f_ring > 0.98 * heavy && f_ring < 1.02 * light,
+        "{f_ring} Hz against {heavy} to {light} Hz"
+    );
+}
+
+/// The spectrum's largest peak between `lo` and `hi` (Hz), refined by a parabola through the
+/// log magnitudes of the three bins around it, and its amplitude.
+fn peak(x: &[f64], dt: f64, lo: f64, hi: f64) -> (f64, f64) {
+    let df = 1.0 / (x.len() as f64 * dt);
+    let bins: Vec<f64> = (1..=(hi / df) as usize + 1)
+        .map(|k| k as f64 * df)
+        .filter(|f| *f >= lo - df)
+        .collect();
+    let a: Vec<f64> = bins.iter().map(|f| common::amplitude(x, dt, *f)).collect();
+    let k = (1..a.len() - 1).max_by(|i, j| a[*i].total_cmp(&a[*j])).unwrap();
+    let (l, m, r) = (a[k - 1].ln(), a[k].ln(), a[k + 1].ln());
+    (bins[k] + 0.5 * (l - r) / (l - 2.0 * m + r) * df, a[k])
+}

@@ -23,10 +23,11 @@
 //! drag and pressure-flow moment; below the critical gap the film there plus Hertz, damping
 //! and boundary friction.
 
-use super::{RollerRecord, Totals, CAGE, CONE, PER_ROLLER, ROLLERS};
+use super::Layout;
+use super::{RollerRecord, Totals, CAGE, CONE, PER_ROLLER};
 use crate::bearing::Bearing;
 use crate::contact::{LineLaw, PointContact};
-use crate::defect::CupDefect;
+use crate::defect::{DefectRing, Pit, RacewayDefect, RollerDefect};
 use crate::fastmath as fm;
 use crate::geometry::Geometry;
 use crate::journal_film::ShortJournal;
@@ -71,8 +72,14 @@ pub(crate) struct Constants {
     half_clearance: f64,
     pub(crate) lobes: u32,
     waveform: f64,
-    /// A local defect on the cup (`crate::defect`).
-    cup_defect: Option<CupDefect>,
+    /// A local defect (`crate::defect`): on the cup, on the cone, or on one roller.
+    cup_defect: Option<RacewayDefect>,
+    cone_defect: Option<RacewayDefect>,
+    roller_defect: Option<RollerDefect>,
+    /// Where the states sit.
+    pub(crate) layout: Layout,
+    /// The cup's support where the cup moves (`crate::housing`).
+    housing: Option<crate::housing::HousingParameters>,
     dd_half: Vec<f64>,
     damping: f64,
     /// 2 zeta sqrt(m / s): the slice damping coefficient is this times sqrt(dq/d delta).
@@ -251,7 +258,11 @@ impl Constants {
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
-            cup_defect: CupDefect::new(&p.defect, b.roller_mean_radius(), &g.cup.point),
+            cup_defect: RacewayDefect::new(&p.defect, DefectRing::Cup, b.roller_mean_radius(), &g.cup),
+            cone_defect: RacewayDefect::new(&p.defect, DefectRing::Cone, b.roller_mean_radius(), &g.cone),
+            roller_defect: RollerDefect::new(&p.defect, b.roller_mean_radius(), &g.cup, &g.cone),
+            layout: Layout::new(p, g.z),
+            housing: p.housing.is_flexible().then_some(p.housing),
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
             damping: p.contact_damping,
             damping_factor: 2.0 * p.contact_damping * (g.roller_mass / g.slices as f64).sqrt(),
@@ -328,8 +339,9 @@ pub(crate) fn prescribed_cone(c: &Constants, inputs: &Inputs) -> [Option<f64>; 3
     std::array::from_fn(|k| c.prescribed[k].then_some(values[k]))
 }
 
-/// Roller `rec`'s share of the global rows of the right-hand side (cone and cage
-/// accelerations), in the order of the state vector's first `ROLLERS` entries.
+/// Roller `rec`'s share of the global rows of the right-hand side (cone, cage and housing
+/// accelerations, the defective roller's spin), in the order of the state vector's global
+/// states (`Layout`).
 pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) {
     out.iter_mut().for_each(|v| *v = 0.0);
     for k in 0..3 {
@@ -340,17 +352,24 @@ pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) 
         out[CAGE + 4] = rec.f_cage[2] / c.m_cage;
         out[CAGE + 5] = rec.m_cage / c.j_cage;
     }
+    if let (Some(h), Some(housing)) = (c.layout.housing, &c.housing) {
+        out[h + 2] = rec.f_cup[1] / housing.mass;
+        out[h + 3] = rec.f_cup[2] / housing.mass;
+    }
+    if let (Some(a), Some(_)) = (c.layout.defect_turn, &c.roller_defect) {
+        out[a] = rec.defect_spin;
+    }
 }
 
 /// Cage angle (roller 1's pocket) for the state `y`.
-pub(crate) fn cage_angle(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
-    if p.cage_dynamic {
+pub(crate) fn cage_angle(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
+    if c.cage_dynamic {
         return y[CAGE + 2];
     }
     // kinematic cage: circular mean of the rollers' azimuths less their pocket offsets
     let (mut sx, mut sy) = (0.0, 0.0);
     for j in 0..g.z {
-        let psi = y[ROLLERS + PER_ROLLER * j + 2] - TAU * j as f64 / g.z as f64;
+        let psi = y[c.layout.roller(j) + 2] - TAU * j as f64 / g.z as f64;
         sx += libm::cos(psi);
         sy += libm::sin(psi);
     }
@@ -358,11 +377,20 @@ pub(crate) fn cage_angle(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
 }
 
 /// Cage angular speed for the state `y`.
-pub(crate) fn cage_speed(g: &Geometry, p: &Parameters, y: &[f64]) -> f64 {
-    if p.cage_dynamic {
+pub(crate) fn cage_speed(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
+    if c.cage_dynamic {
         return y[CAGE + 5];
     }
-    (0..g.z).map(|j| y[ROLLERS + PER_ROLLER * j + 5]).sum::<f64>() / g.z as f64
+    (0..g.z).map(|j| y[c.layout.roller(j) + 5]).sum::<f64>() / g.z as f64
+}
+
+/// The cup's translation and velocity on its support in state `y` (zero where the housing
+/// is rigid).
+pub(crate) fn cup_motion(c: &Constants, y: &[f64]) -> (V3, V3) {
+    match c.layout.housing {
+        Some(h) => (V3::new(0.0, y[h], y[h + 1]), V3::new(0.0, y[h + 2], y[h + 3])),
+        None => (V3::zeros(), V3::zeros()),
+    }
 }
 
 /// Position, velocity and attitude of roller `j` in state `y`: azimuth frame e_r, e_t (x the
@@ -385,7 +413,7 @@ struct RollerPose {
 
 #[inline(always)]
 fn roller_pose(g: &Geometry, c: &Constants, y: &[f64], j: usize) -> RollerPose {
-    let o = ROLLERS + PER_ROLLER * j;
+    let o = c.layout.roller(j);
     let (x, dr, psi) = (y[o], y[o + 1], y[o + 2]);
     let (xd, drd, psid) = (y[o + 3], y[o + 4], y[o + 5]);
     let (tilt, skew) = (y[o + 6], y[o + 7]);
@@ -412,8 +440,9 @@ fn roller_pose(g: &Geometry, c: &Constants, y: &[f64], j: usize) -> RollerPose {
 }
 
 /// Kinetic energy of the moving bodies in state `y` (J): rollers (translation, and rotation
-/// about their axis and transverse to it), cage (translation and spin), cone translation.
-/// The cone's spin is driven by the shaft and not counted.
+/// about their axis and transverse to it), cage (translation and spin), cone translation, the
+/// housing's translation where it moves. The cone's spin is driven by the shaft and not
+/// counted.
 pub(crate) fn kinetic_energy(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
     let mut e = 0.0;
     for j in 0..g.z {
@@ -424,7 +453,62 @@ pub(crate) fn kinetic_energy(g: &Geometry, c: &Constants, y: &[f64]) -> f64 {
     if c.cage_dynamic {
         e += 0.5 * (c.m_cage * (y[CAGE + 3].powi(2) + y[CAGE + 4].powi(2)) + c.j_cage * y[CAGE + 5].powi(2));
     }
+    if let Some(housing) = &c.housing {
+        e += 0.5 * housing.mass * cup_motion(c, y).1.norm_squared();
+    }
     e + 0.5 * c.m_cone * (y[CONE + 3].powi(2) + y[CONE + 4].powi(2) + y[CONE + 5].powi(2))
+}
+
+/// With the cup on its support: move the bearing in state `y` onto the support's static
+/// deflection under the inputs, u0 = F_b / k with F_b the bearing's force on the cup in `y`
+/// (cup centred): the cup, the cone's free radial translations, the cage and every roller are
+/// translated by u0, so that the bearing's inner state is unchanged and the support carries
+/// its load. A roller keeps its axis: translated, its azimuth frame turns by d psi, and its
+/// skew and its angular velocity's frame components are taken back by that turn.
+pub(crate) fn seat_on_support(g: &Geometry, c: &Constants, inputs: &Inputs, y: &mut [f64]) {
+    let (Some(h), Some(housing)) = (c.layout.housing, &c.housing) else {
+        return;
+    };
+    let mut records = vec![RollerRecord::default(); g.z];
+    let tot = evaluate(g, c, inputs, y, None, &mut records, None);
+    let u0 = V3::new(0.0, tot.f_cup[1], tot.f_cup[2]) / housing.stiffness;
+    y[h] += u0[1];
+    y[h + 1] += u0[2];
+    for k in 1..3 {
+        if !c.prescribed[k] {
+            y[CONE + k] += u0[k];
+        }
+    }
+    if c.cage_dynamic {
+        y[CAGE] += u0[1];
+        y[CAGE + 1] += u0[2];
+    }
+    for j in 0..g.z {
+        let o = c.layout.roller(j);
+        let pose = roller_pose(g, c, y, j);
+        let moved = pose.pos + u0;
+        let turn = libm::atan2(moved.dot(&pose.e_t), moved.dot(&pose.e_r));
+        y[o + 1] = (moved[1] * moved[1] + moved[2] * moved[2]).sqrt() - c.pitch_radius;
+        y[o + 2] += turn;
+        // the axis stays: the frame's turn about x takes sin(beta) of it from the skew
+        y[o + 7] -= turn * -pose.u.dot(&pose.e_r);
+        let (st, ct) = libm::sincos(turn);
+        let (wr, wt) = (y[o + 9], y[o + 10]);
+        y[o + 9] = wr * ct + wt * st;
+        y[o + 10] = -wr * st + wt * ct;
+    }
+}
+
+/// The housing's books in state `y`: the support's spring energy ½ k |u|² (J) and the power
+/// its damper dissipates, c |u'|² (W); zero for a rigid housing.
+pub(crate) fn housing_books(c: &Constants, y: &[f64]) -> (f64, f64) {
+    match &c.housing {
+        Some(h) => {
+            let (u, v) = cup_motion(c, y);
+            (0.5 * h.stiffness * u.norm_squared(), h.damping * v.norm_squared())
+        }
+        None => (0.0, 0.0),
+    }
 }
 
 /// Traction coefficient of a raceway slice and its EHL rolling couple: the force on the roller
@@ -659,6 +743,88 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
         gap_psi -= drop_psi;
     }
     (gap, gap_psi)
+}
+
+/// The extra interference of the cone at contact point `q` (the cone's frame) from its local
+/// defect, turned by `turn` since t = 0, and its derivative along the azimuth.
+#[inline]
+fn cone_gap(c: &Constants, q: &V3, turn: f64) -> (f64, f64) {
+    match &c.cone_defect {
+        Some(d) => {
+            let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
+            let (drop, drop_psi) = d.drop(libm::atan2(q[2], q[1]) - turn, rho, d.station(q[0], rho));
+            (-drop, -drop_psi)
+        }
+        None => (0.0, 0.0),
+    }
+}
+
+/// A roller that carries a defect (`crate::defect::RollerDefect`): its outward normal
+/// (global frame), its spin angle since t = 0 and its centre of mass's
+/// offset along the axis from its middle.
+struct RollerBody {
+    defect: RollerDefect,
+    normal: V3,
+    spin: f64,
+    cm: f64,
+}
+
+/// The defective roller as one raceway's contacts see it, in that raceway's frame.
+struct RollerPit<'a> {
+    defect: &'a RollerDefect,
+    pit: &'a Pit,
+    pos: V3,
+    a: V3,
+    /// The roller's body frame about its axis before its spin: the outward normal and a x it.
+    u1: V3,
+    u2: V3,
+    spin: f64,
+    cm: f64,
+}
+
+impl RollerBody {
+    /// As the contacts of `race` see it, with the outward normal `normal` in the race's frame
+    /// and the pit `pit` that raceway bridges.
+    fn in_frame<'a>(&'a self, race: &Race, normal: V3, pit: &'a Pit) -> RollerPit<'a> {
+        RollerPit {
+            defect: &self.defect,
+            pit,
+            pos: race.pos,
+            a: race.a,
+            u1: normal,
+            u2: race.a.cross(&normal),
+            spin: self.spin,
+            cm: self.cm,
+        }
+    }
+}
+
+impl RollerPit<'_> {
+    /// The extra interference at contact point `q` (the race's frame) from the roller's
+    /// defect, and its derivative along the azimuth of the point about the bearing axis: the
+    /// defect's drop at the body angle and axial station of the roller's surface point there,
+    /// its slope along the roller's circumference carried over to the azimuthal direction.
+    #[inline]
+    fn gap(&self, q: &V3) -> (f64, f64) {
+        let lever = q - self.pos;
+        let along = lever.dot(&self.a);
+        let d = lever - self.a * along;
+        let chi = libm::atan2(d.dot(&self.u2), d.dot(&self.u1)) - self.spin;
+        let (drop, slope) = self.defect.drop(self.pit, chi, along + self.cm);
+        if drop == 0.0 && slope == 0.0 {
+            return (0.0, 0.0);
+        }
+        let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
+        let dn = d.norm();
+        if rho == 0.0 || dn == 0.0 {
+            return (-drop, 0.0);
+        }
+        // the roller's rolling direction at the point (increasing body angle), a x d / |d|,
+        // against the point's azimuthal direction
+        let e_t = V3::new(0.0, -q[2] / rho, q[1] / rho);
+        let rolling = self.a.cross(&d).dot(&e_t) / dn;
+        (-drop, -rho * slope * rolling)
+    }
 }
 
 /// All slices of one roller against one raceway. `gap(p)` is the extra interference term at
@@ -961,6 +1127,13 @@ struct Frame {
     cage_rate: f64,
     cage_pos: V3,
     cage_vel: V3,
+    /// The cup's translation on its support and its velocity, and the bearing axis crossed
+    /// with the translation (zero where the housing is rigid).
+    cup_pos: V3,
+    cup_vel: V3,
+    cup_orbit: V3,
+    /// The turning angle of a cone or roller defect (rad; `Layout::defect_turn`).
+    turn: f64,
     /// The supply's starvation at the current speed.
     starved: Starved,
 }
@@ -1216,7 +1389,7 @@ fn evaluate_roller(
     slice_loads: Option<&mut [f64]>,
 ) -> RollerRecord {
     let ns = c.s_cm.len();
-    let o = ROLLERS + PER_ROLLER * j;
+    let o = c.layout.roller(j);
     let RollerPose {
         e_r,
         e_t,
@@ -1234,17 +1407,26 @@ fn evaluate_roller(
     let da_dtilt = m_in * cf;
     let da_dskew = -u * sf - e_t * cf;
     let dd = c.dd_half[j];
+    // a defect on this roller: its body frame (the outward normal, turned with its spin)
+    let on_roller = c.roller_defect.filter(|d| d.roller == j).map(|d| RollerBody {
+        defect: d,
+        normal: m_in,
+        spin: c.layout.defect_turn.map_or(0.0, |k| y[k]),
+        cm: c.cm,
+    });
 
-    // cup: the global frame; it does not translate and turns at `cupSpeed` about the axis
+    // cup: on its support (fixed where the housing is rigid); it turns at `cupSpeed` about
+    // its axis
+    let moving_cup = c.housing.is_some();
     let cup = Race {
         line: &c.cup,
-        pos,
+        pos: if moving_cup { pos - f.cup_pos } else { pos },
         vel,
         w,
         a,
-        ring_v0: V3::zeros(),
+        ring_v0: f.cup_vel,
         ring_omega: V3::x() * inputs.cup_speed,
-        pt_v0: V3::zeros(),
+        pt_v0: if moving_cup { f.cup_orbit * psid } else { V3::zeros() },
         pt_omega: V3::x() * psid,
         gap_max: -c.half_clearance * c.cos_o,
         starved: f.starved,
@@ -1256,10 +1438,20 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let near_defect = c
-        .cup_defect
-        .is_some_and(|d| d.near(libm::atan2(pos[2], pos[1]), (pos[1] * pos[1] + pos[2] * pos[2]).sqrt()));
-    let cup_sum = if c.lobes > 0 || near_defect {
+    let near_defect = c.cup_defect.is_some_and(|d| {
+        d.near(
+            libm::atan2(cup.pos[2], cup.pos[1]),
+            (cup.pos[1] * cup.pos[1] + cup.pos[2] * cup.pos[2]).sqrt(),
+        )
+    });
+    let cup_sum = if let Some(body) = &on_roller {
+        let body = body.in_frame(&cup, body.normal, &body.defect.on_cup);
+        race_slices(c, &cup, dd, cup_loads, |q: &V3| {
+            let (gap, gap_psi) = cup_gap(c, q, near_defect);
+            let (drop, drop_psi) = body.gap(q);
+            (gap + drop, gap_psi + drop_psi)
+        })
+    } else if c.lobes > 0 || near_defect {
         race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect))
     } else {
         let gap = -c.half_clearance * c.cos_o;
@@ -1286,14 +1478,34 @@ fn evaluate_roller(
         gap_max: 0.0,
         starved: f.starved,
     };
-    #[cfg(target_arch = "x86_64")]
-    let cone_sum = if c.lane_slices {
-        race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
+    // a cone defect in the cone's material frame, turned by `f.turn` since t = 0
+    let near_cone_defect = c.cone_defect.is_some_and(|d| {
+        d.near(
+            libm::atan2(cone.pos[2], cone.pos[1]) - f.turn,
+            (cone.pos[1] * cone.pos[1] + cone.pos[2] * cone.pos[2]).sqrt(),
+        )
+    });
+    let cone_sum = if near_cone_defect || on_roller.is_some() {
+        let body = on_roller.as_ref().map(|b| b.in_frame(&cone, f.rot_t * b.normal, &b.defect.on_cone));
+        race_slices(c, &cone, dd, cone_loads, |q: &V3| {
+            let (mut gap, mut gap_psi) = if near_cone_defect { cone_gap(c, q, f.turn) } else { (0.0, 0.0) };
+            if let Some(body) = &body {
+                let (drop, drop_psi) = body.gap(q);
+                gap += drop;
+                gap_psi += drop_psi;
+            }
+            (gap, gap_psi)
+        })
     } else {
+        #[cfg(target_arch = "x86_64")]
+        if c.lane_slices {
+            race_slices_lanes(c, &cone, dd, cone_loads, 0.0)
+        } else {
+            race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
+        }
+        #[cfg(not(target_arch = "x86_64"))]
         race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0))
     };
-    #[cfg(not(target_arch = "x86_64"))]
-    let cone_sum = race_slices(c, &cone, dd, cone_loads, |_: &V3| (0.0, 0.0));
     let (f_cone_r, m_cone_r) = (f.rot * cone_sum.f, f.rot * cone_sum.m);
     let p_raceway = cup_sum.power + cone_sum.power;
     let extrapolated = cup_sum.extrapolated | cone_sum.extrapolated;
@@ -1306,7 +1518,7 @@ fn evaluate_roller(
     let m = cup_sum.m + m_cone_r + m_fl + m_pk;
     // moments about the geometric centre (the centre of mass is cm along a from it)
     let to_centre = a * c.cm;
-    let rec = RollerRecord {
+    let mut rec = RollerRecord {
         qi: cone_sum.q,
         qo: cup_sum.q,
         qf: q_fl,
@@ -1332,6 +1544,7 @@ fn evaluate_roller(
         p_flange,
         p_cage,
         extrapolated,
+        defect_spin: 0.0,
     };
 
     if let Some(dy) = dy {
@@ -1349,6 +1562,11 @@ fn evaluate_roller(
         let a_dot = w_rel.cross(&a);
         dy[6] = a_dot.dot(&da_dtilt) / (cf * cf);
         dy[7] = a_dot.dot(&da_dskew);
+        if on_roller.is_some() {
+            // the spin relative to the body frame (outward normal, a x it), whose rotation
+            // about the axis is cos(beta) cos(skew) psi' - sin(skew) tilt'
+            rec.defect_spin = w.dot(&a) - (u[0] * cf * psid - sf * dy[6]);
+        }
         // Euler: w' = (M.a/I_a) a + [M - (M.a) a - (I_a - I_t)(w.a)(w x a)] / I_t
         let ma = m.dot(&a);
         let gyro = if c.gyroscopic {
@@ -1384,7 +1602,7 @@ fn rollers(
     match (&c.pool, dy, slice_loads.as_deref_mut()) {
         (Some(pool), Some(dy), Some(loads)) => {
             use rayon::prelude::*;
-            let per_roller = &mut dy[ROLLERS..ROLLERS + PER_ROLLER * g.z];
+            let per_roller = &mut dy[c.layout.roller(0)..c.layout.roller(g.z)];
             pool.install(|| {
                 records
                     .par_iter_mut()
@@ -1396,7 +1614,7 @@ fn rollers(
         }
         (_, mut dy, _) => {
             for (j, rec) in records.iter_mut().enumerate().take(g.z) {
-                let o = ROLLERS + PER_ROLLER * j;
+                let o = c.layout.roller(j);
                 let d = dy.as_deref_mut().map(|d| &mut d[o..o + PER_ROLLER]);
                 let loads = slice_loads.as_deref_mut().map(|l| &mut l[2 * ns * j..2 * ns * (j + 1)]);
                 *rec = evaluate_roller(g, c, inputs, frame, y, j, d, loads);
@@ -1410,7 +1628,6 @@ fn rollers(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate(
     g: &Geometry,
-    p: &Parameters,
     c: &Constants,
     inputs: &Inputs,
     y: &[f64],
@@ -1441,8 +1658,9 @@ pub(crate) fn evaluate(
             V3::new(0.0, y[CAGE + 3], y[CAGE + 4]),
         )
     } else {
-        (cage_angle(g, p, y), cage_speed(g, p, y), V3::zeros(), V3::zeros())
+        (cage_angle(g, c, y), cage_speed(g, c, y), V3::zeros(), V3::zeros())
     };
+    let (cup_pos, cup_vel) = cup_motion(c, y);
     let frame = Frame {
         rot,
         rot_t,
@@ -1456,6 +1674,10 @@ pub(crate) fn evaluate(
         cage_rate,
         cage_pos,
         cage_vel,
+        cup_pos,
+        cup_vel,
+        cup_orbit: V3::x().cross(&cup_pos),
+        turn: c.layout.defect_turn.map_or(0.0, |k| y[k]),
         starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
     };
     rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
@@ -1481,8 +1703,12 @@ pub(crate) fn evaluate(
     let f_cage_rollers = tot.f_cage;
     if c.cage_dynamic {
         let land = &c.land;
-        let e = V3::new(0.0, y[CAGE], y[CAGE + 1]);
-        let v = V3::new(0.0, y[CAGE + 3], y[CAGE + 4]);
+        // the cage relative to the cup, which carries the land
+        let (e, v) = if c.housing.is_some() {
+            (frame.cage_pos - cup_pos, frame.cage_vel - cup_vel)
+        } else {
+            (V3::new(0.0, y[CAGE], y[CAGE + 1]), V3::new(0.0, y[CAGE + 3], y[CAGE + 4]))
+        };
         let ecc = e.norm();
         let e_hat = if ecc > 0.0 { e / ecc } else { V3::new(0.0, 1.0, 0.0) };
         let e_perp = V3::x().cross(&e_hat);
@@ -1516,6 +1742,10 @@ pub(crate) fn evaluate(
         // the land's force on the cage comes from the cup
         tot.f_cup -= tot.f_cage - f_cage_rollers;
     }
+    // the cup on its support: m u'' = F_b - k u - c u'
+    if let Some(h) = &c.housing {
+        tot.cup_acceleration = (tot.f_cup - cup_pos * h.stiffness - cup_vel * h.damping) / h.mass;
+    }
     if let Some(dy) = dy {
         // cone
         for k in 0..3 {
@@ -1530,6 +1760,18 @@ pub(crate) fn evaluate(
             } else {
                 dy[CONE + 3 + k] = acc[k];
             }
+        }
+        if let Some(h) = c.layout.housing {
+            dy[h] = cup_vel[1];
+            dy[h + 1] = cup_vel[2];
+            dy[h + 2] = tot.cup_acceleration[1];
+            dy[h + 3] = tot.cup_acceleration[2];
+        }
+        if let Some(k) = c.layout.defect_turn {
+            dy[k] = match &c.roller_defect {
+                Some(d) => records[d.roller].defect_spin,
+                None => inputs.speed,
+            };
         }
         // cage
         if c.cage_dynamic {

@@ -30,18 +30,20 @@ pub const NG: usize = super::ROLLERS;
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockJacobian {
     pub z: usize,
+    /// Global states: the base twelve and the element's further ones (`Constants::globals`).
+    pub ng: usize,
     /// z blocks of M x M.
     pub d: Vec<f64>,
-    /// z blocks of M x NG.
+    /// z blocks of M x ng.
     pub r: Vec<f64>,
-    /// z blocks of NG x M.
+    /// z blocks of ng x M.
     pub l: Vec<f64>,
-    /// NG x NG.
+    /// ng x ng.
     pub g: Vec<f64>,
 }
 
 /// What the finite differences need from the model: the right-hand side and, for the state
-/// it was last evaluated at, each roller's share of the global equations (NG values per roller).
+/// it was last evaluated at, each roller's share of the global equations (ng values per roller).
 pub trait BlockSystem {
     /// The derivative at time `t` (the inputs may ramp over the interval) and state `y`.
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
@@ -61,19 +63,20 @@ pub trait BlockSystem {
 }
 
 impl BlockJacobian {
-    pub fn zeros(z: usize) -> BlockJacobian {
+    pub fn zeros(z: usize, ng: usize) -> BlockJacobian {
         BlockJacobian {
             z,
+            ng,
             d: vec![0.0; z * M * M],
-            r: vec![0.0; z * M * NG],
-            l: vec![0.0; z * NG * M],
-            g: vec![0.0; NG * NG],
+            r: vec![0.0; z * M * ng],
+            l: vec![0.0; z * ng * M],
+            g: vec![0.0; ng * ng],
         }
     }
 
     /// Number of values in [`BlockJacobian::write`].
-    pub fn len(z: usize) -> usize {
-        z * (M * M + 2 * M * NG) + NG * NG
+    pub fn len(z: usize, ng: usize) -> usize {
+        z * (M * M + 2 * M * ng) + ng * ng
     }
 
     /// Renumber the roller blocks as if every roller had moved on by `k` places: roller j takes
@@ -81,39 +84,40 @@ impl BlockJacobian {
     /// stands after k pitches of orbit where roller j + k stood.
     pub fn shift_rollers(&mut self, k: usize) {
         let k = k % self.z;
+        let ng = self.ng;
         self.d.rotate_left(k * M * M);
-        self.r.rotate_left(k * M * NG);
-        self.l.rotate_left(k * NG * M);
+        self.r.rotate_left(k * M * ng);
+        self.l.rotate_left(k * ng * M);
     }
 
     /// Write the blocks to `out`, [`BlockJacobian::len`] values (for the serialised
     /// integrator state).
     pub fn write(&self, out: &mut [f64]) {
-        let z = self.z;
+        let (z, ng) = (self.z, self.ng);
         let (a, rest) = out.split_at_mut(z * M * M);
-        let (b, rest) = rest.split_at_mut(z * M * NG);
-        let (c, d) = rest.split_at_mut(z * NG * M);
+        let (b, rest) = rest.split_at_mut(z * M * ng);
+        let (c, d) = rest.split_at_mut(z * ng * M);
         a.copy_from_slice(&self.d);
         b.copy_from_slice(&self.r);
         c.copy_from_slice(&self.l);
-        d[..NG * NG].copy_from_slice(&self.g);
+        d[..ng * ng].copy_from_slice(&self.g);
     }
 
     /// Read the blocks written by [`BlockJacobian::write`].
     pub fn read(&mut self, v: &[f64]) {
-        let z = self.z;
+        let (z, ng) = (self.z, self.ng);
         let (a, rest) = v.split_at(z * M * M);
-        let (b, rest) = rest.split_at(z * M * NG);
-        let (c, d) = rest.split_at(z * NG * M);
+        let (b, rest) = rest.split_at(z * M * ng);
+        let (c, d) = rest.split_at(z * ng * M);
         self.d.copy_from_slice(a);
         self.r.copy_from_slice(b);
         self.l.copy_from_slice(c);
-        self.g.copy_from_slice(&d[..NG * NG]);
+        self.g.copy_from_slice(&d[..ng * ng]);
     }
 
     /// Finite-difference Jacobian at (`t`, `y`) with `f0` = f(t, y) (recomputed here, with the shares),
     /// perturbation of component i: sqrt(eps) max(|y_i|, scale_i). `work` holds 3 n values,
-    /// `shares` 2 z NG. `global_active[k]` = false skips global columns that nothing reads.
+    /// `shares` 2 z ng. `global_active[k]` = false skips global columns that nothing reads.
     /// Returns the number of right-hand sides evaluated.
     #[allow(clippy::too_many_arguments)]
     pub fn compute(
@@ -122,17 +126,17 @@ impl BlockJacobian {
         t: f64,
         y: &[f64],
         scale: &[f64],
-        global_active: &[bool; NG],
+        global_active: &[bool],
         work: &mut [f64],
         shares: &mut [f64],
     ) -> u64 {
         let n = y.len();
-        let z = self.z;
+        let (z, ng) = (self.z, self.ng);
         let (f0, rest) = work.split_at_mut(n);
         let (yp, rest) = rest.split_at_mut(n);
         let fp = &mut rest[..n];
-        let (s0, sp) = shares.split_at_mut(z * NG);
-        let sp = &mut sp[..z * NG];
+        let (s0, sp) = shares.split_at_mut(z * ng);
+        let sp = &mut sp[..z * ng];
         let mut count = 0;
         sys.rhs(t, y, f0);
         sys.shares(s0);
@@ -143,33 +147,33 @@ impl BlockJacobian {
         for i in 0..M {
             yp.copy_from_slice(y);
             for j in 0..z {
-                let k = NG + M * j + i;
+                let k = ng + M * j + i;
                 yp[k] = y[k] + step(k);
             }
             sys.rhs(t, yp, fp);
             sys.shares(sp);
             count += 1;
             for j in 0..z {
-                let k = NG + M * j + i;
+                let k = ng + M * j + i;
                 let inv = 1.0 / (yp[k] - y[k]);
-                let o = NG + M * j;
+                let o = ng + M * j;
                 for row in 0..M {
                     self.d[j * M * M + row * M + i] = (fp[o + row] - f0[o + row]) * inv;
                 }
-                for row in 0..NG {
-                    self.l[j * NG * M + row * M + i] = (sp[j * NG + row] - s0[j * NG + row]) * inv;
+                for row in 0..ng {
+                    self.l[j * ng * M + row * M + i] = (sp[j * ng + row] - s0[j * ng + row]) * inv;
                 }
             }
         }
         // global columns
-        for gc in 0..NG {
+        for gc in 0..ng {
             if !global_active[gc] {
-                for row in 0..NG {
-                    self.g[row * NG + gc] = 0.0;
+                for row in 0..ng {
+                    self.g[row * ng + gc] = 0.0;
                 }
                 for j in 0..z {
                     for row in 0..M {
-                        self.r[j * M * NG + row * NG + gc] = 0.0;
+                        self.r[j * M * ng + row * ng + gc] = 0.0;
                     }
                 }
                 continue;
@@ -179,13 +183,13 @@ impl BlockJacobian {
             let inv = 1.0 / (yp[gc] - y[gc]);
             sys.rhs(t, yp, fp);
             count += 1;
-            for row in 0..NG {
-                self.g[row * NG + gc] = (fp[row] - f0[row]) * inv;
+            for row in 0..ng {
+                self.g[row * ng + gc] = (fp[row] - f0[row]) * inv;
             }
             for j in 0..z {
-                let o = NG + M * j;
+                let o = ng + M * j;
                 for row in 0..M {
-                    self.r[j * M * NG + row * NG + gc] = (fp[o + row] - f0[o + row]) * inv;
+                    self.r[j * M * ng + row * ng + gc] = (fp[o + row] - f0[o + row]) * inv;
                 }
             }
         }
@@ -194,11 +198,11 @@ impl BlockJacobian {
 
     /// y = J x (tests; power iteration for the spectral radius).
     pub fn apply(&self, x: &[f64], y: &mut [f64]) {
-        let z = self.z;
-        let (xg, xr) = x.split_at(NG);
-        let (yg, yr) = y.split_at_mut(NG);
-        for row in 0..NG {
-            yg[row] = (0..NG).map(|c| self.g[row * NG + c] * xg[c]).sum();
+        let (z, ng) = (self.z, self.ng);
+        let (xg, xr) = x.split_at(ng);
+        let (yg, yr) = y.split_at_mut(ng);
+        for row in 0..ng {
+            yg[row] = (0..ng).map(|c| self.g[row * ng + c] * xg[c]).sum();
         }
         for j in 0..z {
             let xj = &xr[M * j..M * j + M];
@@ -207,15 +211,15 @@ impl BlockJacobian {
                 for c in 0..M {
                     s += self.d[j * M * M + row * M + c] * xj[c];
                 }
-                for c in 0..NG {
-                    s += self.r[j * M * NG + row * NG + c] * xg[c];
+                for c in 0..ng {
+                    s += self.r[j * M * ng + row * ng + c] * xg[c];
                 }
                 yr[M * j + row] = s;
             }
-            for row in 0..NG {
+            for row in 0..ng {
                 let mut s = 0.0;
                 for c in 0..M {
-                    s += self.l[j * NG * M + row * M + c] * xj[c];
+                    s += self.l[j * ng * M + row * M + c] * xj[c];
                 }
                 yg[row] += s;
             }
@@ -227,38 +231,40 @@ impl BlockJacobian {
 #[derive(Debug, Clone)]
 pub struct BlockLu {
     z: usize,
+    ng: usize,
     pub alpha: f64,
     a: Vec<f64>,
     piv_a: Vec<usize>,
     v: Vec<f64>,
     l: Vec<f64>,
     s: Vec<f64>,
-    piv_s: [usize; NG],
+    piv_s: Vec<usize>,
 }
 
 impl BlockLu {
-    pub fn new(z: usize) -> BlockLu {
+    pub fn new(z: usize, ng: usize) -> BlockLu {
         BlockLu {
             z,
+            ng,
             alpha: f64::NAN,
             a: vec![0.0; z * M * M],
             piv_a: vec![0; z * M],
-            v: vec![0.0; z * M * NG],
-            l: vec![0.0; z * NG * M],
-            s: vec![0.0; NG * NG],
-            piv_s: [0; NG],
+            v: vec![0.0; z * M * ng],
+            l: vec![0.0; z * ng * M],
+            s: vec![0.0; ng * ng],
+            piv_s: vec![0; ng],
         }
     }
 
     /// Factor alpha I - J. False if singular.
     pub fn factor(&mut self, jac: &BlockJacobian, alpha: f64) -> bool {
         self.alpha = alpha;
-        let z = self.z;
+        let (z, ng) = (self.z, self.ng);
         self.l.copy_from_slice(&jac.l);
         // S = alpha I - G - sum L_j V_j
-        for row in 0..NG {
-            for c in 0..NG {
-                self.s[row * NG + c] = if row == c { alpha } else { 0.0 } - jac.g[row * NG + c];
+        for row in 0..ng {
+            for c in 0..ng {
+                self.s[row * ng + c] = if row == c { alpha } else { 0.0 } - jac.g[row * ng + c];
             }
         }
         for j in 0..z {
@@ -273,41 +279,41 @@ impl BlockLu {
                 return false;
             }
             // V_j = A_j^-1 R_j, column by column
-            let v = &mut self.v[j * M * NG..(j + 1) * M * NG];
+            let v = &mut self.v[j * M * ng..(j + 1) * M * ng];
             let mut col = [0.0; M];
-            for c in 0..NG {
+            for c in 0..ng {
                 for row in 0..M {
-                    col[row] = jac.r[j * M * NG + row * NG + c];
+                    col[row] = jac.r[j * M * ng + row * ng + c];
                 }
                 lu_solve(a, M, piv, &mut col);
                 for row in 0..M {
-                    v[row * NG + c] = col[row];
+                    v[row * ng + c] = col[row];
                 }
             }
-            let l = &jac.l[j * NG * M..(j + 1) * NG * M];
-            for row in 0..NG {
-                for c in 0..NG {
+            let l = &jac.l[j * ng * M..(j + 1) * ng * M];
+            for row in 0..ng {
+                for c in 0..ng {
                     let mut sum = 0.0;
                     for k in 0..M {
-                        sum += l[row * M + k] * v[k * NG + c];
+                        sum += l[row * M + k] * v[k * ng + c];
                     }
-                    self.s[row * NG + c] -= sum;
+                    self.s[row * ng + c] -= sum;
                 }
             }
         }
-        lu_factor(&mut self.s, NG, &mut self.piv_s)
+        lu_factor(&mut self.s, ng, &mut self.piv_s)
     }
 
     /// Solve (alpha I - J) x = b in place.
     pub fn solve(&mut self, b: &mut [f64]) {
-        let z = self.z;
-        let (bg, br) = b.split_at_mut(NG);
+        let (z, ng) = (self.z, self.ng);
+        let (bg, br) = b.split_at_mut(ng);
         // z_j = A_j^-1 b_j; r = b_g + sum L_j z_j
         for j in 0..z {
             let zj = &mut br[M * j..M * j + M];
             lu_solve(&self.a[j * M * M..(j + 1) * M * M], M, &self.piv_a[j * M..(j + 1) * M], zj);
-            let l = &self.l[j * NG * M..(j + 1) * NG * M];
-            for row in 0..NG {
+            let l = &self.l[j * ng * M..(j + 1) * ng * M];
+            for row in 0..ng {
                 let mut s = 0.0;
                 for k in 0..M {
                     s += l[row * M + k] * zj[k];
@@ -315,14 +321,14 @@ impl BlockLu {
                 bg[row] += s;
             }
         }
-        lu_solve(&self.s, NG, &self.piv_s, bg);
+        lu_solve(&self.s, ng, &self.piv_s, bg);
         // x_j = z_j + V_j x_g
         for j in 0..z {
-            let v = &self.v[j * M * NG..(j + 1) * M * NG];
+            let v = &self.v[j * M * ng..(j + 1) * M * ng];
             for row in 0..M {
                 let mut s = 0.0;
-                for c in 0..NG {
-                    s += v[row * NG + c] * bg[c];
+                for c in 0..ng {
+                    s += v[row * ng + c] * bg[c];
                 }
                 br[M * j + row] += s;
             }
@@ -400,7 +406,7 @@ mod tests {
     #[test]
     fn shifting_the_rollers_renumbers_their_blocks() {
         let z = 5;
-        let mut jac = BlockJacobian::zeros(z);
+        let mut jac = BlockJacobian::zeros(z, NG);
         // every entry tells its roller and position: 1000 (roller + 1) + index in the block
         for j in 0..z {
             let tag = |i: usize| 1000.0 * (j + 1) as f64 + i as f64;
@@ -444,7 +450,7 @@ mod tests {
             seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
         };
-        let mut jac = BlockJacobian::zeros(z);
+        let mut jac = BlockJacobian::zeros(z, NG);
         for v in jac
             .d
             .iter_mut()
@@ -463,7 +469,7 @@ mod tests {
             }
         }
         let alpha = 3.0;
-        let mut lu = BlockLu::new(z);
+        let mut lu = BlockLu::new(z, NG);
         assert!(lu.factor(&jac, alpha));
         let x: Vec<f64> = (0..n).map(|_| rnd()).collect();
         // b = (alpha I - J) x
@@ -475,10 +481,10 @@ mod tests {
             assert!((b[i] - x[i]).abs() < 1e-9, "{i}: {} vs {}", b[i], x[i]);
         }
         // serialisation round trip
-        let mut v = vec![f64::NAN; BlockJacobian::len(z)];
+        let mut v = vec![f64::NAN; BlockJacobian::len(z, NG)];
         jac.write(&mut v);
         assert!(v.iter().all(|x| x.is_finite()), "every value written");
-        let mut back = BlockJacobian::zeros(z);
+        let mut back = BlockJacobian::zeros(z, NG);
         back.read(&v);
         assert_eq!(back, jac);
     }

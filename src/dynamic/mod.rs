@@ -44,7 +44,7 @@ use crate::geometry::Geometry;
 use crate::model::{Inputs, LoadCausality, ModelError, Outputs, Parameters, Preload};
 use crate::quasi_static::QuasiStatic;
 use integrator::{Counters, Dopri5, Failure, StepControl};
-use jacobian::{BlockSystem, NG};
+use jacobian::BlockSystem;
 use multistep::MilneHamming;
 use nalgebra::{Matrix3, Vector3};
 use rosenbrock::RosenbrockW;
@@ -56,9 +56,61 @@ type V3 = Vector3<f64>;
 /// Offsets in the state vector.
 const CONE: usize = 0; // x y z vx vy vz
 const CAGE: usize = 6; // y z psi vy vz psi'
+/// The base global states (cone and cage): the element's further global states follow them,
+/// then the rollers (`Layout`).
 const ROLLERS: usize = 12;
 /// States per roller: x dr psi x' dr' psi' tilt skew w_x w_r w_t.
 pub const PER_ROLLER: usize = 11;
+
+/// Where the states sit in the state vector: the twelve base global states (cone, cage), the
+/// element's further global states, then the rollers' eleven each. The further ones exist only
+/// where the element needs them, so that a bearing without them integrates exactly the states
+/// (and the bits) it did before they were added:
+/// - the housing's u_y, u_z, u_y', u_z' (`housing.mass` > 0, `crate::housing`);
+/// - the turning angle of a defect that turns: the cone's turn (a cone defect) or the spin
+///   angle of the defective roller (a roller defect), zero at t = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Layout {
+    /// Number of global states.
+    pub globals: usize,
+    /// First of the housing's four states.
+    pub housing: Option<usize>,
+    /// The defect's turning angle.
+    pub defect_turn: Option<usize>,
+    pub z: usize,
+}
+
+impl Layout {
+    pub fn new(p: &Parameters, z: usize) -> Layout {
+        use crate::defect::DefectRing;
+        let mut globals = ROLLERS;
+        let housing = p.housing.is_flexible().then(|| {
+            globals += 4;
+            globals - 4
+        });
+        let defect_turn = matches!(p.defect.ring, DefectRing::Cone | DefectRing::Roller).then(|| {
+            globals += 1;
+            globals - 1
+        });
+        Layout {
+            globals,
+            housing,
+            defect_turn,
+            z,
+        }
+    }
+
+    /// Offset of roller `j`'s states.
+    #[inline(always)]
+    pub fn roller(&self, j: usize) -> usize {
+        self.globals + PER_ROLLER * j
+    }
+
+    /// Number of states.
+    pub fn len(&self) -> usize {
+        self.roller(self.z)
+    }
+}
 
 /// The evolving state of the dynamic model (serialised with the FMU state).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -131,6 +183,9 @@ pub(crate) struct RollerRecord {
     pub p_cage: f64,
     /// A slice law was extrapolated beyond its table.
     pub extrapolated: bool,
+    /// The defective roller's spin relative to its body frame (rad/s; the rate of
+    /// `Layout::defect_turn`): zero for the other rollers, and without a roller defect.
+    pub defect_spin: f64,
 }
 
 /// Totals of one evaluation.
@@ -153,6 +208,8 @@ pub(crate) struct Totals {
     pub t_cup: f64,
     /// Force of the rollers and the cage land on the cup.
     pub f_cup: V3,
+    /// The cup's acceleration on its support (zero where the housing is rigid).
+    pub cup_acceleration: V3,
     pub extrapolated: bool,
 }
 
@@ -203,8 +260,8 @@ impl Evaluation {
 
     /// Evaluate the contacts at `y` (and the derivatives into `dy` when given).
     #[allow(clippy::too_many_arguments)]
-    fn run(&mut self, g: &Geometry, p: &Parameters, c: &contacts::Constants, inputs: &Inputs, y: &[f64], dy: Option<&mut [f64]>) {
-        self.totals = contacts::evaluate(g, p, c, inputs, y, dy, &mut self.records, Some(&mut self.slice_loads));
+    fn run(&mut self, g: &Geometry, c: &contacts::Constants, inputs: &Inputs, y: &[f64], dy: Option<&mut [f64]>) {
+        self.totals = contacts::evaluate(g, c, inputs, y, dy, &mut self.records, Some(&mut self.slice_loads));
         self.y.clear();
         self.y.extend_from_slice(y);
         self.inputs = Some(*inputs);
@@ -232,7 +289,6 @@ enum Integrator {
 /// The model as the integrators see it over one communication interval.
 struct Model<'a> {
     g: &'a Geometry,
-    p: &'a Parameters,
     c: &'a contacts::Constants,
     /// The inputs at the interval's start.
     inputs: &'a Inputs,
@@ -254,16 +310,17 @@ impl BlockSystem for Model<'_> {
     }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         match self.ramp {
-            None => self.eval.run(self.g, self.p, self.c, self.inputs, y, Some(dy)),
+            None => self.eval.run(self.g, self.c, self.inputs, y, Some(dy)),
             Some((t0, rates)) => {
                 let now = self.inputs.ramped(rates, t - t0);
-                self.eval.run(self.g, self.p, self.c, &now, y, Some(dy));
+                self.eval.run(self.g, self.c, &now, y, Some(dy));
             }
         }
     }
     fn shares(&self, out: &mut [f64]) {
         for (j, r) in self.eval.records.iter().enumerate() {
-            contacts::global_shares(self.c, r, &mut out[j * NG..(j + 1) * NG]);
+            let ng = self.c.layout.globals;
+            contacts::global_shares(self.c, r, &mut out[j * ng..(j + 1) * ng]);
         }
     }
 }
@@ -271,14 +328,14 @@ impl BlockSystem for Model<'_> {
 /// The integrator of `params` (`integrator`, `tolerance`, `maxStep`) for the model of
 /// geometry `g` and constants `c`, its tolerance scales at reference speed `speed` (rad/s).
 fn integrator(g: &Geometry, c: &contacts::Constants, params: &Parameters, speed: f64) -> Integrator {
-    let n = ROLLERS + PER_ROLLER * g.z;
+    let n = c.layout.len();
     let (atol, rtol) = tolerances(g, c, params, speed, n);
     let implicit = || {
         let scale = perturbation_scales(g, &atol, params);
-        let active = moving_globals(g, params);
+        let active = moving_globals(g, params, &c.layout);
         let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
         ig.orbit = Some(rosenbrock::Orbit {
-            state: ROLLERS + 2,
+            state: c.layout.roller(0) + 2,
             turn: JACOBIAN_TURN,
             pitch: identical_rollers(params).then(|| TAU / g.z as f64),
         });
@@ -325,7 +382,7 @@ impl Dynamic {
     }
 
     pub fn n_states(&self) -> usize {
-        ROLLERS + PER_ROLLER * self.g.z
+        self.c.layout.len()
     }
 
     /// A dynamic model of `bearing` and its state at t = 0 started from the quasi-static
@@ -368,7 +425,7 @@ impl Dynamic {
         let ls = 0.5 * g.length;
         let axis0 = V3::new(g.axis[0], g.axis[1], 0.0); // (x, r, t) components
         for j in 0..z {
-            let o = ROLLERS + PER_ROLLER * j;
+            let o = self.c.layout.roller(j);
             let (a, rho, tilt) = (x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j] / ls);
             let psi = cage_angle + TAU * j as f64 / z as f64;
             // attitude: nominal axis tilted by theta in the axial plane
@@ -387,6 +444,11 @@ impl Dynamic {
             y[o + 9] = w[1];
             y[o + 10] = w[2];
             let _ = axis0;
+        }
+        // a housing on its support carries the load from the start (force inputs; under
+        // displacement inputs the cup starts centred)
+        if self.p.causality == LoadCausality::Force {
+            contacts::seat_on_support(g, &self.c, inputs, &mut y);
         }
         DynamicState {
             y,
@@ -424,7 +486,6 @@ impl Dynamic {
     fn model<'a>(&'a mut self, inputs: &'a Inputs, ramp: Option<(f64, &'a Inputs)>) -> (Model<'a>, &'a mut Integrator) {
         let model = Model {
             g: &self.g,
-            p: &self.p,
             c: &self.c,
             inputs,
             ramp,
@@ -443,8 +504,8 @@ impl Dynamic {
         let tol = self.p.tolerance.max(MIN_TOLERANCE);
         let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
         let perturbation = perturbation_scales(&self.g, &atol, &self.p);
-        let active = moving_globals(&self.g, &self.p);
-        let mut solver = steady::SteadySolver::new(self.g.z);
+        let active = moving_globals(&self.g, &self.p, &self.c.layout);
+        let mut solver = steady::SteadySolver::new(self.g.z, self.c.layout.globals);
         let (mut model, _) = self.model(inputs, None);
         let mut y = state.y.clone();
         let done = solver.solve(&mut model, &mut y, &scale, &perturbation, &active)?;
@@ -563,14 +624,14 @@ impl Dynamic {
     /// Fill `out` from `state`.
     pub fn write_outputs(&mut self, state: &DynamicState, inputs: &Inputs, out: &mut Outputs) {
         if !self.eval.holds(inputs, &state.y) {
-            self.eval.run(&self.g, &self.p, &self.c, inputs, &state.y, None);
+            self.eval.run(&self.g, &self.c, inputs, &state.y, None);
         }
         let g = &self.g;
         let totals = self.eval.totals;
         let y = &state.y;
         let z = g.z;
         for j in 0..z {
-            let o = ROLLERS + PER_ROLLER * j;
+            let o = self.c.layout.roller(j);
             let r = &self.eval.records[j];
             out.tilt[j] = y[o + 6];
             out.skew[j] = y[o + 7];
@@ -597,6 +658,7 @@ impl Dynamic {
         out.reaction_fy = -totals.f_cone[1];
         out.reaction_fz = -totals.f_cone[2];
         (out.housing_fy, out.housing_fz) = (totals.f_cup[1], totals.f_cup[2]);
+        (out.cup_ay, out.cup_az) = (totals.cup_acceleration[1], totals.cup_acceleration[2]);
         out.rating_c = self.rating.c_r;
         let fr = libm::hypot(totals.f_cone[1], totals.f_cone[2]);
         out.life_l10 = self.rating.life_l10(fr, out.reaction_fx, inputs.speed, inputs.cup_speed);
@@ -604,7 +666,7 @@ impl Dynamic {
         out.rating_c0 = self.rating.c_0r;
         out.safety_s0 = self.rating.static_safety(fr, out.reaction_fx);
         out.pressure_max = g.max_raceway_pressure(&self.eval.slice_loads);
-        out.cage_speed = contacts::cage_speed(g, &self.p, y);
+        out.cage_speed = contacts::cage_speed(g, &self.c, y);
         // Torque needed to drive the cone: minus the moment of the roller forces about its axis.
         // With the cup turning too it is the torque between the rings: in steady running the
         // cup is driven the opposite way, and the power loss (all contacts' dissipation, from
@@ -661,14 +723,20 @@ impl Dynamic {
         Ok(())
     }
 
-    /// Kinetic energy of rollers, cage and cone translation in `state` (J).
+    /// Kinetic energy of rollers, cage, cone translation and a moving housing in `state` (J).
     pub fn kinetic_energy(&self, state: &DynamicState) -> f64 {
         contacts::kinetic_energy(&self.g, &self.c, &state.y)
     }
 
+    /// The housing's books in `state` (`crate::housing`): the support's spring energy (J)
+    /// and the power its damper dissipates (W); zero for a rigid housing.
+    pub fn housing_books(&self, state: &DynamicState) -> (f64, f64) {
+        contacts::housing_books(&self.c, &state.y)
+    }
+
     /// Cage angle now (roller 1's pocket).
     pub fn cage_angle(&self, state: &DynamicState) -> f64 {
-        contacts::cage_angle(&self.g, &self.p, &state.y)
+        contacts::cage_angle(&self.g, &self.c, &state.y)
     }
 
     /// The slice loads of the last evaluation (per roller the cone's slices, then the cup's).
@@ -678,7 +746,7 @@ impl Dynamic {
 
     /// Right-hand side at `state` (for tests and benchmarks).
     pub fn rhs(&mut self, inputs: &Inputs, y: &[f64], dy: &mut [f64]) {
-        self.eval.run(&self.g, &self.p, &self.c, inputs, y, Some(dy));
+        self.eval.run(&self.g, &self.c, inputs, y, Some(dy));
     }
 }
 
@@ -816,8 +884,19 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
     set(CAGE + 3, v_ref * 1e-3, 0.0);
     set(CAGE + 4, v_ref * 1e-3, 0.0);
     set(CAGE + 5, wc_ref.max(1.0) * 1e-3, 1.0);
+    if let Some(h) = c.layout.housing {
+        // the cup's translations and velocities as the cone's
+        for k in 0..2 {
+            set(h + k, l_ref, 0.0);
+            set(h + 2 + k, l_ref * 1e3, 0.0);
+        }
+    }
+    if let Some(a) = c.layout.defect_turn {
+        // an angle that moves a point of the pitch circle by the reference length
+        set(a, l_ref / r_p, 0.0);
+    }
     for j in 0..g.z {
-        let o = ROLLERS + PER_ROLLER * j;
+        let o = c.layout.roller(j);
         set(o, l_ref, 0.0);
         set(o + 1, l_ref, 0.0);
         set(o + 2, l_ref / r_p, 0.0);
@@ -844,27 +923,35 @@ fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
     let tol = p.tolerance.max(MIN_TOLERANCE);
     let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
     scale[CAGE + 2] = 1.0;
+    let layout = Layout::new(p, g.z);
+    if let Some(a) = layout.defect_turn {
+        scale[a] = 1.0;
+    }
     for j in 0..g.z {
-        scale[ROLLERS + PER_ROLLER * j + 2] = 1.0;
+        scale[layout.roller(j) + 2] = 1.0;
     }
     scale
 }
 
-/// Whether every roller has the same diameter deviation (the rollers are interchangeable).
+/// Whether the rollers are interchangeable: the same diameter deviation, none with a defect.
 fn identical_rollers(p: &Parameters) -> bool {
-    p.roller_dd.iter().all(|d| *d == p.roller_dd[0])
+    p.roller_dd.iter().all(|d| *d == p.roller_dd[0]) && p.defect.ring != crate::defect::DefectRing::Roller
 }
 
 /// The global states that move: the cone's translations under force inputs (axially only
-/// in force preload), the cage's if it is dynamic. The others are prescribed or unused.
-fn moving_globals(g: &Geometry, p: &Parameters) -> [bool; NG] {
+/// in force preload), the cage's if it is dynamic, the housing's and the defect's turn where
+/// the element has them. The others are prescribed or unused.
+fn moving_globals(g: &Geometry, p: &Parameters, layout: &Layout) -> Vec<bool> {
     let force = p.causality == LoadCausality::Force;
     let moving_x = g.axial && p.preload == Preload::Force && force;
-    std::array::from_fn(|k| match k {
-        0 | 3 => moving_x,
-        1 | 2 | 4 | 5 => force,
-        _ => p.cage_dynamic,
-    })
+    (0..layout.globals)
+        .map(|k| match k {
+            0 | 3 => moving_x,
+            1 | 2 | 4 | 5 => force,
+            6..ROLLERS => p.cage_dynamic,
+            _ => true,
+        })
+        .collect()
 }
 
 /// Rotation matrix of the small rotation vector (0, xi, zeta) (Rodrigues), the cone's

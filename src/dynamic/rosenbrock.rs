@@ -39,7 +39,7 @@
 //! continues bit for bit.
 
 use super::integrator::{error_norm, Counters, Failure, StepControl};
-use super::jacobian::{BlockJacobian, BlockLu, BlockSystem, NG};
+use super::jacobian::{BlockJacobian, BlockLu, BlockSystem};
 
 const S: usize = 4;
 const GAMMA: f64 = 4.358_665_215_084_590_0e-1;
@@ -77,7 +77,9 @@ pub struct RosenbrockW {
     pub rtol: Vec<f64>,
     /// Perturbation scales of the finite differences.
     pub scale: Vec<f64>,
-    pub global_active: [bool; NG],
+    /// Per global state: whether it moves (its Jacobian column is computed); as many as the
+    /// model has global states.
+    pub global_active: Vec<bool>,
     pub max_step: f64,
     pub step_budget: u64,
     /// Accepted steps a Jacobian serves at most.
@@ -135,8 +137,8 @@ pub struct Orbit {
 }
 
 /// Layout of the integrator memory: [age, orbit angle at the Jacobian, Jacobian blocks].
-fn memory_len(z: usize) -> usize {
-    HEADER + BlockJacobian::len(z)
+fn memory_len(z: usize, ng: usize) -> usize {
+    HEADER + BlockJacobian::len(z, ng)
 }
 const HEADER: usize = 2;
 
@@ -154,9 +156,10 @@ const HEADER: usize = 2;
 const RAMPED_MAX_AGE: u64 = 4;
 
 impl RosenbrockW {
-    pub fn new(z: usize, atol: Vec<f64>, rtol: Vec<f64>, scale: Vec<f64>, global_active: [bool; NG], max_step: f64) -> RosenbrockW {
+    pub fn new(z: usize, atol: Vec<f64>, rtol: Vec<f64>, scale: Vec<f64>, global_active: Vec<bool>, max_step: f64) -> RosenbrockW {
         let n = atol.len();
-        assert!(rtol.len() == n && scale.len() == n && n == NG + super::PER_ROLLER * z);
+        let ng = global_active.len();
+        assert!(rtol.len() == n && scale.len() == n && n == ng + super::PER_ROLLER * z);
         // Gamma^-1 of the lower triangular Gamma
         let mut gi = [[0.0; S]; S];
         for i in 0..S {
@@ -193,15 +196,15 @@ impl RosenbrockW {
             rhs_budget: u64::MAX,
             orbit: None,
             refactor_ratio: 1e-12,
-            jac: BlockJacobian::zeros(z),
-            lu: BlockLu::new(z),
+            jac: BlockJacobian::zeros(z, ng),
+            lu: BlockLu::new(z, ng),
             u: std::array::from_fn(|_| vec![0.0; n]),
             f: vec![0.0; n],
             y_stage: vec![0.0; n],
             y_new: vec![0.0; n],
             err: vec![0.0; n],
             work: vec![0.0; 3 * n],
-            shares: vec![0.0; 2 * z * NG],
+            shares: vec![0.0; 2 * z * ng],
             a,
             c,
             m,
@@ -324,16 +327,16 @@ impl RosenbrockW {
     ) -> Result<(), Failure> {
         let n = self.n;
         let StepControl { h, err_prev } = step;
-        let z = self.jac.z;
+        let (z, ng) = (self.jac.z, self.jac.ng);
         if fsal.len() != n {
             fsal.clear();
             fsal.resize(n, 0.0);
             sys.rhs(*t, y, fsal);
             counters.rhs += 1;
         }
-        if memory.len() != memory_len(z) {
+        if memory.len() != memory_len(z, ng) {
             memory.clear();
-            memory.resize(memory_len(z), 0.0);
+            memory.resize(memory_len(z, ng), 0.0);
             self.refresh_jacobian(sys, *t, y, counters, memory);
         } else {
             self.jac.read(&memory[HEADER..]);
@@ -505,7 +508,7 @@ impl RosenbrockW {
 
 #[cfg(test)]
 mod tests {
-    use super::super::jacobian::M;
+    use super::super::jacobian::{M, NG};
     use super::*;
 
     /// A stiff block system: each "roller" is a lightly damped fast oscillator (omega 2e5)
@@ -554,7 +557,7 @@ mod tests {
                 z,
                 shares: vec![0.0; z * NG],
             };
-            let mut ig = RosenbrockW::new(z, vec![tol; n], vec![tol; n], vec![1e-3; n], [true; NG], 1.0);
+            let mut ig = RosenbrockW::new(z, vec![tol; n], vec![tol; n], vec![1e-3; n], vec![true; NG], 1.0);
             let mut y = vec![0.0; n];
             y[0] = 1.0;
             for j in 0..z {
@@ -629,7 +632,7 @@ mod tests {
                 shares: vec![0.0; z * NG],
                 time_dependent,
             };
-            let mut ig = RosenbrockW::new(z, vec![1e-9; n], vec![0.0; n], vec![1e-9; n], [true; NG], 1.0);
+            let mut ig = RosenbrockW::new(z, vec![1e-9; n], vec![0.0; n], vec![1e-9; n], vec![true; NG], 1.0);
             let mut y = vec![0.0; n];
             let (mut t, mut h) = (0.0, StepControl::start(1e-6));
             let mut c = Counters::default();

@@ -28,7 +28,7 @@
 //! over about 0.1 s on the [W25] bearing (`docs/dynamic.md`) and hardly moves the power
 //! balance.
 
-use super::{Dynamic, DynamicState, CAGE, CONE, PER_ROLLER, ROLLERS};
+use super::{Dynamic, DynamicState, CAGE, CONE, PER_ROLLER};
 use crate::model::{Inputs, ModelError, Outputs};
 use std::f64::consts::TAU;
 
@@ -128,6 +128,10 @@ impl Dynamic {
         }
         let turned = running.y[CAGE + 2] - start_angle;
         self.turn_back(&mut running, turned);
+        // a turning defect starts where its parameters put it
+        if let Some(k) = self.c.layout.defect_turn {
+            running.y[k] = 0.0;
+        }
         self.balance_cone(&mut running, inputs);
         running.t = t0;
         running.counters = Default::default();
@@ -146,7 +150,9 @@ impl Dynamic {
     /// [`BALANCE_ITERATIONS`] iterations of four right-hand sides). A balance not found
     /// keeps the best state seen.
     fn balance_cone(&mut self, state: &mut DynamicState, inputs: &Inputs) {
-        let free: Vec<usize> = (0..3).filter(|&k| super::moving_globals(&self.g, &self.p)[k]).collect();
+        let free: Vec<usize> = (0..3)
+            .filter(|&k| super::moving_globals(&self.g, &self.p, &self.c.layout)[k])
+            .collect();
         if free.is_empty() {
             return;
         }
@@ -200,7 +206,8 @@ impl Dynamic {
             0
         };
         let shift = whole.rem_euclid(z as i64) as usize;
-        let rollers = &mut state.y[ROLLERS..ROLLERS + PER_ROLLER * z];
+        let layout = self.c.layout;
+        let rollers = &mut state.y[layout.roller(0)..layout.roller(z)];
         // roller j takes the state of the roller that turned into its place
         rollers.rotate_right(PER_ROLLER * shift);
         for j in 0..z {

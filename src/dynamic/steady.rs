@@ -23,7 +23,7 @@
 //! damped step (natural monotonicity test, Deuflhard 2004: the next Newton correction,
 //! computed with the same factors, must shrink).
 
-use super::jacobian::{BlockJacobian, BlockLu, BlockSystem, M, NG};
+use super::jacobian::{BlockJacobian, BlockLu, BlockSystem, M};
 use super::CAGE;
 
 /// Newton iterations at most.
@@ -44,6 +44,7 @@ pub enum NoSteadyState {
 /// Work space of the solve.
 pub struct SteadySolver {
     z: usize,
+    ng: usize,
     jac: BlockJacobian,
     lu: BlockLu,
     r: Vec<f64>,
@@ -54,17 +55,19 @@ pub struct SteadySolver {
 }
 
 impl SteadySolver {
-    pub fn new(z: usize) -> SteadySolver {
-        let n = NG + M * z;
+    /// For `z` rollers and `ng` global states.
+    pub fn new(z: usize, ng: usize) -> SteadySolver {
+        let n = ng + M * z;
         SteadySolver {
             z,
-            jac: BlockJacobian::zeros(z),
-            lu: BlockLu::new(z),
+            ng,
+            jac: BlockJacobian::zeros(z, ng),
+            lu: BlockLu::new(z, ng),
             r: vec![0.0; n],
             delta: vec![0.0; n],
             trial: vec![0.0; n],
             work: vec![0.0; 3 * n],
-            shares: vec![0.0; 2 * z * NG],
+            shares: vec![0.0; 2 * z * ng],
         }
     }
 
@@ -79,7 +82,7 @@ impl SteadySolver {
         y: &mut [f64],
         scale: &[f64],
         perturbation: &[f64],
-        active: &[bool; NG],
+        active: &[bool],
     ) -> Result<(u32, u64), NoSteadyState> {
         let cage_angle = y[CAGE + 2];
         let mut rhs = 0u64;
@@ -135,18 +138,19 @@ impl SteadySolver {
     /// Replace the rows of the finite-difference Jacobian of f by those of the steady
     /// equations: each roller's azimuth rate minus the cage's, the cage angle itself, and
     /// the identity for the prescribed global states.
-    fn steady_rows(&mut self, active: &[bool; NG]) {
+    fn steady_rows(&mut self, active: &[bool]) {
+        let ng = self.ng;
         let jac = &mut self.jac;
         for j in 0..self.z {
-            jac.r[j * M * NG + 2 * NG + CAGE + 5] -= 1.0;
+            jac.r[j * M * ng + 2 * ng + CAGE + 5] -= 1.0;
         }
-        for k in 0..NG {
+        for k in 0..ng {
             if k == CAGE + 2 || !active[k] {
-                for c in 0..NG {
-                    jac.g[k * NG + c] = if c == k { 1.0 } else { 0.0 };
+                for c in 0..ng {
+                    jac.g[k * ng + c] = if c == k { 1.0 } else { 0.0 };
                 }
                 for j in 0..self.z {
-                    jac.l[j * NG * M + k * M..j * NG * M + (k + 1) * M].fill(0.0);
+                    jac.l[j * ng * M + k * M..j * ng * M + (k + 1) * M].fill(0.0);
                 }
             }
         }
@@ -155,7 +159,8 @@ impl SteadySolver {
 
 /// The steady equations at `y`: f(y), with each roller's azimuth rate taken relative to the
 /// cage's, the cage angle's departure from `cage_angle`, and zero for prescribed states.
-fn residual(sys: &mut impl BlockSystem, y: &[f64], active: &[bool; NG], cage_angle: f64, z: usize, out: &mut [f64]) {
+fn residual(sys: &mut impl BlockSystem, y: &[f64], active: &[bool], cage_angle: f64, z: usize, out: &mut [f64]) {
+    let ng = active.len();
     sys.rhs(0.0, y, out);
     for (k, a) in active.iter().enumerate() {
         if !a {
@@ -164,7 +169,7 @@ fn residual(sys: &mut impl BlockSystem, y: &[f64], active: &[bool; NG], cage_ang
     }
     out[CAGE + 2] = y[CAGE + 2] - cage_angle;
     for j in 0..z {
-        out[NG + M * j + 2] -= y[CAGE + 5];
+        out[ng + M * j + 2] -= y[CAGE + 5];
     }
 }
 
@@ -188,6 +193,7 @@ fn scaled_max(v: &[f64], scale: &[f64]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::jacobian::NG;
     use super::*;
 
     /// Rollers held by springs and dampers, with one spin component driven by 1 - w^2 - brake:
@@ -228,7 +234,7 @@ mod tests {
         active[CAGE + 2] = true;
         active[CAGE + 5] = true;
         let scale = vec![1.0; n];
-        let r = SteadySolver::new(z).solve(&mut Braked { z, brake }, &mut y, &scale, &scale, &active);
+        let r = SteadySolver::new(z, NG).solve(&mut Braked { z, brake }, &mut y, &scale, &scale, &active);
         (y, r)
     }
 

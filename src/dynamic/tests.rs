@@ -750,10 +750,9 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     let z = d.g.z;
     let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0, n);
     let scale: Vec<f64> = atol.iter().map(|a| a / d.p.tolerance).collect();
-    let mut jac = BlockJacobian::zeros(z);
+    let mut jac = BlockJacobian::zeros(z, d.c.layout.globals);
     let mut model = super::Model {
         g: &d.g,
-        p: &d.p,
         c: &d.c,
         inputs: &i,
         ramp: None,
@@ -828,7 +827,7 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     // the block factorisation solves (alpha I - J) x = b
     for h in [1e-4, 1e-6, 1e-8] {
         let alpha = 1.0 / (h * 0.4358665215084590);
-        let mut lu = super::jacobian::BlockLu::new(z);
+        let mut lu = super::jacobian::BlockLu::new(z, d.c.layout.globals);
         assert!(lu.factor(&jac, alpha));
         let xs: Vec<f64> = (0..n).map(|k| scale[k] * ((k * 7919 % 13) as f64 - 6.0)).collect();
         let mut jx = vec![0.0; n];

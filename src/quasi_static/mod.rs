@@ -329,9 +329,10 @@ struct RollerSetup {
     gamma: f64,
     gap_cone: f64,
     gap_cup: f64,
-    /// The roller stands on the cup's local defect: its cup slices take the crown plus the
-    /// defect's drop of `defect_tables[j]`.
+    /// The roller stands on a local defect with its cup (cone) slices: they take the crown
+    /// plus the defect's drop of `defect_tables[j]` (`cone_defect_tables[j]`).
     on_defect: bool,
+    on_cone_defect: bool,
 }
 
 /// The level-0 model of one bearing with one parameter set.
@@ -354,12 +355,18 @@ pub struct QuasiStatic {
     spin_ratio: f64,
     cone_table: SliceTable,
     cup_table: SliceTable,
-    /// A local defect on the cup (`crate::defect`), and per roller the cup's slice table with
-    /// the defect's drop added to the crown (filled for the rollers on it, `prepare`); the cup
-    /// slices' stations across the raceway (from its middle) and radii.
-    cup_defect: Option<crate::defect::CupDefect>,
+    /// A local defect (`crate::defect`) on the cup, the cone or one roller, and per roller the
+    /// cup's and the cone's slice tables with the defect's drop added to the crown (filled for
+    /// the rollers on it, `prepare`); the slices' stations across each raceway (from its
+    /// middle); the turn of a cone or roller defect since t = 0 (rad; `set_defect_turn`).
+    cup_defect: Option<crate::defect::RacewayDefect>,
+    cone_defect: Option<crate::defect::RacewayDefect>,
+    roller_defect: Option<crate::defect::RollerDefect>,
     defect_tables: Vec<SliceTable>,
+    cone_defect_tables: Vec<SliceTable>,
     defect_station: Vec<f64>,
+    cone_defect_station: Vec<f64>,
+    defect_turn: f64,
     /// This solve is axisymmetric: one roller is evaluated and replicated.
     axisymmetric: bool,
     /// The cone translations (x, y, z) this solve prescribes (`prepare`): all three in
@@ -418,13 +425,19 @@ impl QuasiStatic {
         let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
         let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
         let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
-        let cup_defect = crate::defect::CupDefect::new(&params.defect, bearing.roller_mean_radius(), &geometry.cup.point);
-        let defect_tables = if cup_defect.is_some() {
-            vec![cup_table.clone(); z]
-        } else {
-            Vec::new()
+        use crate::defect::{DefectRing, RacewayDefect, RollerDefect};
+        let radius = bearing.roller_mean_radius();
+        let cup_defect = RacewayDefect::new(&params.defect, DefectRing::Cup, radius, &geometry.cup);
+        let cone_defect = RacewayDefect::new(&params.defect, DefectRing::Cone, radius, &geometry.cone);
+        let roller_defect = RollerDefect::new(&params.defect, radius, &geometry.cup, &geometry.cone);
+        let tables = |table: &SliceTable, on: bool| if on { vec![table.clone(); z] } else { Vec::new() };
+        let defect_tables = tables(&cup_table, cup_defect.is_some() || roller_defect.is_some());
+        let cone_defect_tables = tables(&cone_table, cone_defect.is_some() || roller_defect.is_some());
+        let stations = |d: Option<RacewayDefect>, line: &crate::geometry::ContactLine| {
+            d.map_or_else(Vec::new, |d| line.point.iter().map(|p| d.station(p[0], p[1])).collect())
         };
-        let defect_station = cup_defect.map_or_else(Vec::new, |d| geometry.cup.point.iter().map(|p| d.station(p[0], p[1])).collect());
+        let defect_station = stations(cup_defect, &geometry.cup);
+        let cone_defect_station = stations(cone_defect, &geometry.cone);
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
@@ -439,8 +452,13 @@ impl QuasiStatic {
             cone_table,
             cup_table,
             cup_defect,
+            cone_defect,
+            roller_defect,
             defect_tables,
+            cone_defect_tables,
             defect_station,
+            cone_defect_station,
+            defect_turn: 0.0,
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
             regularisation: 1e-9 * k_ref,
             geometry,
@@ -479,6 +497,13 @@ impl QuasiStatic {
     }
 
     fn prepare(&mut self, inputs: &Inputs, cage_angle: f64) {
+        if self.params.defect.ring != crate::defect::DefectRing::None {
+            let z = self.geometry.z;
+            for j in 0..z {
+                let (on_cup, on_cone) = self.place_defect(j, cage_angle + TAU * j as f64 / z as f64);
+                (self.setup[j].on_defect, self.setup[j].on_cone_defect) = (on_cup, on_cone);
+            }
+        }
         let g = &self.geometry;
         let p = &self.params;
         let z = g.z;
@@ -502,7 +527,7 @@ impl QuasiStatic {
             && inputs.zeta == 0.0
             && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
             && p.roller_dd.iter().all(|d| *d == p.roller_dd[0])
-            && self.cup_defect.is_none();
+            && p.defect.ring == crate::defect::DefectRing::None;
         let cos_h = libm::cos(g.half_angle);
         let cos_o = libm::cos(g.cup_angle);
         for j in 0..z {
@@ -514,15 +539,7 @@ impl QuasiStatic {
                 0.0
             };
             let dd = 0.5 * p.roller_dd[j] * cos_h;
-            let mut on_defect = false;
-            if let Some(d) = &self.cup_defect {
-                let table = &mut self.defect_tables[j];
-                for k in 0..g.slices {
-                    let drop = d.drop(psi, g.cup.raceway_radius[k], self.defect_station[k]).0;
-                    table.crown[k] = g.crown[k] + drop;
-                    on_defect |= drop > 0.0;
-                }
-            }
+            let (on_defect, on_cone_defect) = (self.setup[j].on_defect, self.setup[j].on_cone_defect);
             self.setup[j] = RollerSetup {
                 cos_psi: c,
                 sin_psi: s,
@@ -530,7 +547,75 @@ impl QuasiStatic {
                 gap_cone: dd,
                 gap_cup: dd - (0.5 * p.clearance + lobe) * cos_o,
                 on_defect,
+                on_cone_defect,
             };
+        }
+    }
+
+    /// Fill roller `j`'s defect tables for the roller at azimuth `psi`: each slice's crown
+    /// plus the drop of a cup defect at `psi`, of a cone defect at `psi` less the cone's turn,
+    /// and, on the defective roller, of its defect at the body angle of its cup contact (its
+    /// outward normal, 0) and of its cone contact (π), less its spin. Whether its cup and its
+    /// cone slices stand on a defect.
+    fn place_defect(&mut self, j: usize, psi: f64) -> (bool, bool) {
+        let g = &self.geometry;
+        let turn = self.defect_turn;
+        let on_roller = self.roller_defect.filter(|d| d.roller == j);
+        let fill = |table: &mut SliceTable, drop: &dyn Fn(usize) -> f64| {
+            let mut on = false;
+            for k in 0..g.slices {
+                let d = drop(k);
+                table.crown[k] = g.crown[k] + d;
+                on |= d > 0.0;
+            }
+            on
+        };
+        let mut on_cup = false;
+        if !self.defect_tables.is_empty() {
+            let cup = self.cup_defect;
+            let station = &self.defect_station;
+            on_cup = fill(&mut self.defect_tables[j], &|k| {
+                cup.map_or(0.0, |d| d.drop(psi, g.cup.raceway_radius[k], station[k]).0)
+                    + on_roller.map_or(0.0, |d| d.drop(&d.on_cup, -turn, g.slice_s[k]).0)
+            });
+        }
+        let mut on_cone = false;
+        if !self.cone_defect_tables.is_empty() {
+            let cone = self.cone_defect;
+            let station = &self.cone_defect_station;
+            on_cone = fill(&mut self.cone_defect_tables[j], &|k| {
+                cone.map_or(0.0, |d| d.drop(psi - turn, g.cone.raceway_radius[k], station[k]).0)
+                    + on_roller.map_or(0.0, |d| d.drop(&d.on_cone, std::f64::consts::PI - turn, g.slice_s[k]).0)
+            });
+        }
+        (on_cup, on_cone)
+    }
+
+    /// Set the turn (rad) of a cone or roller defect since t = 0: the cone's turn, or the
+    /// defective roller's spin relative to the cage ([`QuasiStatic::defect_turn_rate`],
+    /// integrated by the element). The next solve places the defect there.
+    pub fn set_defect_turn(&mut self, turn: f64) {
+        self.defect_turn = turn;
+    }
+
+    /// The rate (rad/s) at which a turning defect turns at `inputs`: the cone's speed for a
+    /// cone defect, the rollers' epicyclic spin relative to the cage for a roller defect;
+    /// zero otherwise.
+    pub fn defect_turn_rate(&self, inputs: &Inputs) -> f64 {
+        match self.params.defect.ring {
+            crate::defect::DefectRing::Cone => inputs.speed,
+            crate::defect::DefectRing::Roller => self.spin_ratio * inputs.relative_speed(),
+            _ => 0.0,
+        }
+    }
+
+    /// The cone's slice table of roller `j`: with the defect's drop where it stands on one.
+    #[inline]
+    fn cone_table_of(&self, j: usize) -> &SliceTable {
+        if self.setup[j].on_cone_defect {
+            &self.cone_defect_tables[j]
+        } else {
+            &self.cone_table
         }
     }
 
@@ -649,7 +734,7 @@ impl QuasiStatic {
         let ni = g.cone.normal;
         let base_i = (cone[0] - q[0]) * ni[0] + (cone[1] - q[1]) * ni[1] + st.gap_cone;
         let (cone_loads, cup_loads) = loads.split_at_mut(g.slices);
-        let si = Self::line_sums(&g.cone, &self.cone_table, base_i, theta, st.gamma, cone_loads);
+        let si = Self::line_sums(&g.cone, self.cone_table_of(j), base_i, theta, st.gamma, cone_loads);
         // Cup: delta = -(a n_x + rho n_r) - theta lever + gap - crown
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
@@ -1895,9 +1980,9 @@ impl QuasiStatic {
         let no = g.cup.normal;
         let base_i = (x[0] - a) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
         let base_o = -(a * no[0] + rho * no[1]) + st.gap_cup;
-        let cup_crown = &self.cup_table_of(j).crown;
+        let (cone_crown, cup_crown) = (&self.cone_table_of(j).crown, &self.cup_table_of(j).crown);
         for k in 0..g.slices {
-            let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - g.crown[k];
+            let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - cone_crown[k];
             cone[k] = g.cone.law.load(k, di).0;
             let d_o = base_o - theta * g.cup.lever[k] - cup_crown[k];
             cup[k] = g.cup.law.load(k, d_o).0;

@@ -288,7 +288,14 @@ impl QuasiStatic {
         let no = g.cup.normal;
         let base_o = -(q[0] * no[0] + q[1] * no[1]) + st.gap_cup;
         for (line, sl, base, chi, crown, is_cone) in [
-            (&g.cone, &sk.cone, base_i, &self.cone_chi[..], &g.crown[..], true),
+            (
+                &g.cone,
+                &sk.cone,
+                base_i,
+                &self.cone_chi[..],
+                &self.cone_table_of(j).crown[..],
+                true,
+            ),
             (&g.cup, &sk.cup, base_o, &self.cone_chi[..], &self.cup_table_of(j).crown[..], false),
         ] {
             let n = Vector2::new(line.normal[0], line.normal[1]);
@@ -876,9 +883,9 @@ impl QuasiStatic {
         let no = g.cup.normal;
         let base_i = (x[0] - a) * ni[0] + (dr - rho) * ni[1] + st.gap_cone;
         let base_o = -(a * no[0] + rho * no[1]) + st.gap_cup;
-        let cup_crown = &self.cup_table_of(j).crown;
+        let (cone_crown, cup_crown) = (&self.cone_table_of(j).crown, &self.cup_table_of(j).crown);
         for k in 0..g.slices {
-            let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - g.crown[k] + sk.cone.shift[k] * phi * phi;
+            let di = base_i + st.gamma * self.cone_chi[k] - theta * g.cone.lever[k] - cone_crown[k] + sk.cone.shift[k] * phi * phi;
             cone[k] = g.cone.law.load(k, di).0;
             let d_o = base_o - theta * g.cup.lever[k] - cup_crown[k] + sk.cup.shift[k] * phi * phi;
             cup[k] = g.cup.law.load(k, d_o).0;
