@@ -573,7 +573,7 @@ fn study_validate_quick_writes_every_section() {
 }
 
 /// `study defects --quick` writes defects.md and its figures; the envelope of the cup spall's
-/// signal peaks at the kinematic outer-race defect frequency within 1 % (about 10 s in
+/// signal peaks at the kinematic outer-race defect frequency within 1 % (10–15 s in
 /// release: two 0.1 s dynamic runs side by side).
 #[test]
 fn study_defects_quick_finds_the_outer_race_frequency() {
