@@ -36,20 +36,12 @@ const BAND: (f64, f64) = (1000.0, 9000.0);
 /// The envelope spectrum is shown up to this frequency (Hz).
 const ENVELOPE_MAX: f64 = 1500.0;
 
-/// The signal a sensor on the housing reads, with its name and unit: the one place that
-/// chooses it.
-struct Sensor {
-    name: &'static str,
-    unit: &'static str,
-    read: fn(&Outputs) -> f64,
+/// The signal the study analyses, with its name and unit, from the element's outputs: the one
+/// place that chooses it. Today the force on a rigid housing; an accelerometer's signal on the
+/// cup once the element has a housing mass.
+fn sensor(o: &Outputs) -> (f64, &'static str, &'static str) {
+    (o.housing_fy, "housing.Fy", "N")
 }
-
-/// The sensor signal of the study.
-const SENSOR: Sensor = Sensor {
-    name: "housing.Fy",
-    unit: "N",
-    read: |o| o.housing_fy,
-};
 
 /// A spall in the middle of the load zone: 1.5 mm long, 10 mm wide, 0.1 mm deep, sharp edges
 /// (a roller of this bearing drops at most R − √(R² − (L/2)²) ≈ 23 µm into it).
@@ -70,13 +62,15 @@ struct Location {
     lines: fn(&Kinematics) -> Vec<Line>,
 }
 
-/// The defect locations the study runs, one line each.
-const LOCATIONS: &[Location] = &[Location {
-    key: "cup",
-    title: "Cup (outer race)",
-    ring: 1,
-    lines: Kinematics::cup_lines,
-}];
+const fn location(key: &'static str, title: &'static str, ring: i32, lines: fn(&Kinematics) -> Vec<Line>) -> Location {
+    Location { key, title, ring, lines }
+}
+
+/// The defect locations the study runs, one line each. The cone and a roller join as
+/// `location("cone", "Cone (inner race)", 2, Kinematics::cone_lines)` and
+/// `location("roller", "Roller", 3, Kinematics::roller_lines)` once the element accepts
+/// `defect.ring` = 2 and 3.
+const LOCATIONS: &[Location] = &[location("cup", "Cup (outer race)", 1, Kinematics::cup_lines)];
 
 /// A characteristic frequency (Hz) and its name.
 #[derive(Debug, Clone)]
@@ -224,7 +218,7 @@ fn run(ring: i32, duration: f64) -> Result<Run, CliError> {
         let t = k as f64 * STEP;
         s.do_step(t, STEP).map_err(|e| fail(format!("t = {t} s: {e}")))?;
         let o = s.outputs().map_err(|e| fail(e.to_string()))?;
-        signal.push((SENSOR.read)(o));
+        signal.push(sensor(o).0);
         cage += o.cage_speed;
     }
     Ok(Run {
@@ -354,6 +348,7 @@ fn shown(spectrum: &[(f64, f64)], f_min: f64) -> Vec<(f64, f64)> {
 /// Run the study and write `docs/defects.md` and `docs/figures/defects_*.svg`.
 pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
     let started = Instant::now();
+    let (_, sensor_name, unit) = sensor(&Outputs::default());
     let figures = docs.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;
     let w = Writer { figures };
@@ -450,9 +445,9 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
         md.push_str(&w.figure(
             &format!("defects_{}_time.svg", loc.key),
             svg::line_chart(
-                &format!("{}: {} against time", loc.title, SENSOR.name),
+                &format!("{}: {} against time", loc.title, sensor_name),
                 "time (ms)",
-                &format!("{} about its mean ({})", SENSOR.name, SENSOR.unit),
+                &format!("{} about its mean ({})", sensor_name, unit),
                 &[
                     Series::line("defect", window(&a.time)),
                     Series::line("healthy", window(&healthy.time)),
@@ -463,9 +458,9 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
         md.push_str(&w.figure(
             &format!("defects_{}_spectrum.svg", loc.key),
             svg::marked_chart(
-                &format!("{}: spectrum of {} (Hann)", loc.title, SENSOR.name),
+                &format!("{}: spectrum of {} (Hann)", loc.title, sensor_name),
                 "frequency (Hz)",
-                &format!("amplitude ({})", SENSOR.unit),
+                &format!("amplitude ({})", unit),
                 &[
                     Series::line("defect", shown(&a.spectrum, 10.0)),
                     Series::line("healthy", shown(&healthy.spectrum, 10.0)),
@@ -480,7 +475,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
             svg::marked_chart(
                 &format!("{}: envelope spectrum", loc.title),
                 "frequency (Hz)",
-                &format!("squared envelope amplitude ({}²)", SENSOR.unit),
+                &format!("squared envelope amplitude ({}²)", unit),
                 &[
                     Series::line("defect", shown(&a.envelope, 5.0)),
                     Series::line("healthy", shown(&healthy.envelope, 5.0)),
@@ -495,7 +490,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
             "\nPeaks of the envelope spectrum (the squared envelope of {} band-passed to {:.0}–{:.0} Hz; Hann window, \
              {df:.0} Hz bins, the largest bin within ±{half:.1} Hz of the kinematic line, its frequency refined by a \
              parabola through the log amplitudes of three bins):\n",
-            SENSOR.name, BAND.0, BAND.1
+            sensor_name, BAND.0, BAND.1
         );
         let rows: Vec<Vec<String>> = (loc.lines)(&kin)
             .iter()
@@ -526,7 +521,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
                 "kinematic (Hz)",
                 "peak (Hz)",
                 "error (%)",
-                &format!("amplitude ({}²)", SENSOR.unit),
+                &format!("amplitude ({}²)", unit),
                 "healthy there",
                 "defect / healthy",
             ],
@@ -553,16 +548,10 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
          Without a defect the signal rings at the rollers' pass over the load line, Z × FTF, the bearing's varying \
          compliance (the same frequency as BPFO for a fixed cup). The peak of the healthy spectrum of {} near it \
          ({df:.0} Hz bins, Hann window, refined as above):\n",
-        SENSOR.name
+        sensor_name
     );
     md.push_str(&table(
-        &[
-            "line",
-            "frequency (Hz)",
-            "peak (Hz)",
-            "error (%)",
-            &format!("amplitude ({})", SENSOR.unit),
-        ],
+        &["line", "frequency (Hz)", "peak (Hz)", "error (%)", &format!("amplitude ({})", unit)],
         &healthy_rows,
     ));
 
@@ -572,7 +561,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
          Written by `cargo run --release -- study defects{}` (src/cli/study/defects.rs); do not edit by hand. \
          {PRESET} at {SPEED_RPM} rpm under Fa = {:.0} kN and Fy = {:.0} kN (the load zone centred on azimuth 0), \
          the dynamic model (`fidelity` = 1) at the preset's settings, {duration} s per run sampled at {:.0} kHz \
-         (communication step {:.0} µs). The signal is `{}`, the force on a rigid housing. Each defect location \
+         (communication step {:.0} µs). The signal is the output `{}` (docs/variables.md). Each defect location \
          the element models runs with a spall in the middle of the load zone, and the healthy bearing under the \
          same load as reference (docs/model.md, \"Local defects\").\n\n\
          The spectra are one-sided amplitude spectra of the whole run with a Hann window (a sine of amplitude A \
@@ -587,7 +576,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
         FY / 1e3,
         1e-3 / STEP,
         STEP * 1e6,
-        SENSOR.name,
+        sensor_name,
         BAND.0,
         BAND.1,
         0.5e-3 / STEP,
