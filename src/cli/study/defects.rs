@@ -87,7 +87,7 @@ fn line(label: impl Into<String>, f: f64) -> Line {
 /// cup, from the geometry alone (not from the model's motion). With the shaft rate f_s, Z
 /// rollers, the pitch diameter d_m and the roller diameter D at contact angle α (Randall &
 /// Antoni, "Rolling element bearing diagnostics—A tutorial", Mech. Syst. Signal Process. 25
-/// (2011) 485, eqs. (1)–(4)):
+/// (2011) 485):
 ///
 /// - cage (fundamental train) frequency FTF = (f_s / 2) (1 − D cos α / d_m);
 /// - outer-race (ball pass) frequency BPFO = (Z f_s / 2) (1 − D cos α / d_m) = Z FTF;
@@ -278,7 +278,7 @@ fn spectrum(x: &[f64], dt: f64, f_max: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The squared envelope of `x` (Randall & Antoni 2011, section 3.3): the squared magnitude of
+/// The squared envelope of `x` (Randall & Antoni 2011, envelope analysis): the squared magnitude of
 /// the analytic signal of `x` band-passed to `band` (Hz), where the impacts ring the bearing;
 /// it repeats at the rate the impacts do.
 fn squared_envelope(x: &[f64], dt: f64, band: (f64, f64)) -> Vec<f64> {
@@ -382,7 +382,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
          From the geometry of {PRESET} at the middle slice: cone and cup contact radii r_i = {:.2} mm, \
          r_o = {:.2} mm, pitch diameter d_m = r_i + r_o = {:.2} mm, D cos α = r_o − r_i = {:.2} mm, roller \
          diameter D = {:.2} mm, Z = {} rollers; shaft rate f_s = {:.3} Hz ({SPEED_RPM} rpm). Formulas of \
-         Randall & Antoni, Mech. Syst. Signal Process. 25 (2011) 485, eqs. (1)–(4), for a fixed cup:\n",
+         Randall & Antoni, Mech. Syst. Signal Process. 25 (2011) 485, for a fixed cup:\n",
         kin.ri * 1e3,
         kin.ro * 1e3,
         (kin.ri + kin.ro) * 1e3,
@@ -565,7 +565,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
          the element models runs with a spall in the middle of the load zone, and the healthy bearing under the \
          same load as reference (docs/model.md, \"Local defects\").\n\n\
          The spectra are one-sided amplitude spectra of the whole run with a Hann window (a sine of amplitude A \
-         reads A at its bin). The envelope is the squared envelope (Randall & Antoni 2011, section 3.3): the \
+         reads A at its bin). The envelope is the squared envelope (Randall & Antoni 2011): the \
          signal band-passed to {:.0}–{:.0} Hz, where the impacts ring the bearing, made analytic, and its squared \
          magnitude; its spectrum shows the rate at which the impacts repeat. The signal is the output at the \
          communication points, not filtered: content above {:.0} kHz (the roller contacts ring up to there and \
