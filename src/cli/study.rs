@@ -2,8 +2,10 @@
 //! ([D19] skew and dry torque of 32018X, [L22] roller diameter deviations of 32008, [Y22]
 //! triple-lobe CRB-TRILOBE) with the product's model, and write the tables and SVG figures.
 //! `all` writes `docs/results-studies.md` and `docs/figures/*.svg`; a single study prints
-//! its section to stdout and writes its figures.
+//! its section to stdout and writes its figures. `w25`, `validate` and `defects` write their
+//! own documents (`w25.rs`, `validate.rs`, `defects.rs`).
 
+mod defects;
 mod validate;
 mod w25;
 
@@ -28,6 +30,10 @@ pub enum Which {
     /// frictional-moment model, both traction laws: docs/validation.md (about half an hour;
     /// --quick: a minute).
     Validate,
+    /// The vibration signature of a local defect (fidelity 1, a spall against the healthy
+    /// bearing): time signal, spectrum, envelope spectrum and its peaks against the kinematic
+    /// defect frequencies, docs/defects.md (about a minute; --quick: shorter runs).
+    Defects,
 }
 
 #[derive(Debug, clap::Args)]
@@ -39,7 +45,7 @@ pub struct StudyArgs {
     #[arg(long, default_value = "docs")]
     pub docs: PathBuf,
     /// Development run of `validate`: 10 ms dynamic runs instead of 50 ms, three dynamic
-    /// cases, fewer sweep points.
+    /// cases, fewer sweep points; of `defects`: 0.1 s runs instead of 0.2 s.
     #[arg(long)]
     pub quick: bool,
 }
@@ -776,6 +782,9 @@ pub fn run(args: StudyArgs) -> Result<(), CliError> {
     }
     if args.which == Which::Validate {
         return validate::report(&args.docs, args.quick);
+    }
+    if args.which == Which::Defects {
+        return defects::report(&args.docs, args.quick);
     }
     let figures = args.docs.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| CliError::failed(format!("cannot create {}: {e}", figures.display())))?;

@@ -18,11 +18,37 @@ const BOTTOM: f64 = 56.0;
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
+    /// A dot at every point (off for dense curves: signals and spectra).
+    pub markers: bool,
 }
 
 impl Series {
     pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
-        Series { name: name.into(), points }
+        Series {
+            name: name.into(),
+            points,
+            markers: true,
+        }
+    }
+
+    /// A curve drawn as a line only, without a dot at each point.
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            markers: false,
+            ..Series::new(name, points)
+        }
+    }
+}
+
+/// A labelled vertical line at `x` (a characteristic frequency on a spectrum).
+pub struct Mark {
+    pub x: f64,
+    pub label: String,
+}
+
+impl Mark {
+    pub fn new(x: f64, label: impl Into<String>) -> Mark {
+        Mark { x, label: label.into() }
     }
 }
 
@@ -126,6 +152,12 @@ pub fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], 
 
 /// An x-y chart with either axis linear or logarithmic (values > 0 on a log axis).
 pub fn chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x: bool, log_y: bool) -> String {
+    marked_chart(title, x_label, y_label, series, &[], log_x, log_y)
+}
+
+/// An x-y chart with labelled vertical lines at `marks` (those outside the curves' x range
+/// are left out); either axis linear or logarithmic.
+pub fn marked_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], marks: &[Mark], log_x: bool, log_y: bool) -> String {
     let tx = |x: f64| if log_x { x.max(1e-300).log10() } else { x };
     let ty = |y: f64| if log_y { y.max(1e-300).log10() } else { y };
     let pts = series
@@ -223,15 +255,36 @@ pub fn chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_x
         if path.is_empty() {
             continue;
         }
+        let width = if s.markers { 2.0 } else { 1.2 };
         let _ = writeln!(
             out,
-            r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
+            r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="{width}"/>"#,
             path.join(" ")
         );
-        for p in &path {
-            let (a, b) = p.split_once(',').unwrap();
-            let _ = writeln!(out, r#"<circle cx="{a}" cy="{b}" r="2.5" fill="{c}"/>"#);
+        if s.markers {
+            for p in &path {
+                let (a, b) = p.split_once(',').unwrap();
+                let _ = writeln!(out, r#"<circle cx="{a}" cy="{b}" r="2.5" fill="{c}"/>"#);
+            }
         }
+    }
+    for m in marks.iter().filter(|m| m.x.is_finite() && (!log_x || m.x > 0.0)) {
+        let t = tx(m.x);
+        if t < x0 || t > x1 {
+            continue;
+        }
+        let xx = px(m.x);
+        // the label runs up along the line from the bottom of the plot
+        let _ = writeln!(
+            out,
+            r##"<line x1="{xx:.1}" y1="{TOP}" x2="{xx:.1}" y2="{:.1}" stroke="#555" stroke-width="0.8" stroke-dasharray="4 3"/><text x="{:.1}" y="{:.1}" font-size="10" fill="#333" transform="rotate(-90 {:.1} {:.1})">{}</text>"##,
+            TOP + ph,
+            xx - 2.0,
+            TOP + ph - 4.0,
+            xx - 2.0,
+            TOP + ph - 4.0,
+            esc(&m.label)
+        );
     }
     let names: Vec<&str> = series.iter().map(|s| s.name.as_str()).collect();
     legend(&mut out, &names);
@@ -341,12 +394,34 @@ mod tests {
             line_chart("t", "x", "y", &s, true),
             line_chart("t", "x", "y", &s, false),
             chart("t", "x", "y", &s, true, true),
+            marked_chart(
+                "t",
+                "x",
+                "y",
+                &s,
+                &[Mark::new(0.5, "BPFO"), Mark::new(-1.0, "outside")],
+                true,
+                false,
+            ),
             polar_chart("p", "N", &s),
         ] {
             assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
             assert!(svg.contains("a &amp; b"));
             assert!(!svg.contains("NaN") && !svg.contains("inf"));
         }
+        let marked = marked_chart(
+            "t",
+            "x",
+            "y",
+            &s,
+            &[Mark::new(0.5, "BPFO"), Mark::new(2.0, "outside")],
+            false,
+            false,
+        );
+        assert!(marked.contains(">BPFO</text>") && !marked.contains("outside"));
+        let dense = line_chart("t", "x", "y", &[Series::line("signal", vec![(0.0, 1.0), (1.0, 2.0)])], false);
+        // the legend's dot only
+        assert_eq!(dense.matches("<circle").count(), 1, "{dense}");
         assert_eq!(nice_step(10.0, 5.0), 2.0);
     }
 }
