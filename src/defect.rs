@@ -283,12 +283,127 @@ impl RollerDefect {
     }
 }
 
+/// The defects beside the first (`defect.*`) that a bearing may have: `defect[2].*` to
+/// `defect[4].*`.
+pub const FURTHER_DEFECTS: usize = 3;
+
+/// The FMU names of one defect's parameters.
+#[derive(Debug, Clone, Copy)]
+pub struct DefectNames {
+    pub ring: &'static str,
+    pub roller: &'static str,
+    pub angle: &'static str,
+    pub length: &'static str,
+    pub width: &'static str,
+    pub depth: &'static str,
+}
+
+macro_rules! names {
+    ($p:literal) => {
+        DefectNames {
+            ring: concat!($p, ".ring"),
+            roller: concat!($p, ".roller"),
+            angle: concat!($p, ".angle"),
+            length: concat!($p, ".length"),
+            width: concat!($p, ".width"),
+            depth: concat!($p, ".depth"),
+        }
+    };
+}
+
+/// The names of the first defect's parameters and of the further ones', in order.
+pub const NAMES: [DefectNames; 1 + FURTHER_DEFECTS] = [names!("defect"), names!("defect[2]"), names!("defect[3]"), names!("defect[4]")];
+
+/// Every local defect of a bearing in the units the contact laws take, by where it sits. Two
+/// pits of one surface that overlap drop as deep as the deeper one; a pit on the raceway and
+/// one on the roller under the same contact add.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LocalDefects {
+    pub cup: Vec<RacewayDefect>,
+    pub cone: Vec<RacewayDefect>,
+    pub rollers: Vec<RollerDefect>,
+}
+
+impl LocalDefects {
+    /// The defects `defects` (those with `ring` = none left out) of a bearing whose rollers
+    /// of mean radius `roller_radius` run on the raceways `cup` and `cone`.
+    pub fn new<'a>(
+        defects: impl Iterator<Item = &'a DefectParameters>,
+        roller_radius: f64,
+        cup: &ContactLine,
+        cone: &ContactLine,
+    ) -> LocalDefects {
+        let mut all = LocalDefects::default();
+        for p in defects {
+            all.cup.extend(RacewayDefect::new(p, DefectRing::Cup, roller_radius, cup));
+            all.cone.extend(RacewayDefect::new(p, DefectRing::Cone, roller_radius, cone));
+            all.rollers.extend(RollerDefect::new(p, roller_radius, cup, cone));
+        }
+        all
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.cup.is_empty() && self.cone.is_empty() && self.rollers.is_empty()
+    }
+
+    /// The drop (m) of a contact point of a raceway with the defects `on` (the cup's or the
+    /// cone's) at angle `psi` of the ring's frame, axial position `x` and radius `rho`, and its
+    /// derivative along that angle (m/rad): the deepest of the pits it lies in.
+    #[inline]
+    pub fn raceway_drop(on: &[RacewayDefect], psi: f64, x: f64, rho: f64) -> (f64, f64) {
+        on.iter().fold((0.0, 0.0), |deepest, d| {
+            let drop = d.drop(psi, rho, d.station(x, rho));
+            if drop.0 > deepest.0 {
+                drop
+            } else {
+                deepest
+            }
+        })
+    }
+
+    /// Whether a roller at angle `psi` of the ring's frame, `rho` from the axis, can touch one
+    /// of the defects `on`.
+    #[inline]
+    pub fn near(on: &[RacewayDefect], psi: f64, rho: f64) -> bool {
+        on.iter().any(|d| d.near(psi, rho))
+    }
+
+    /// The defects of roller `j` (0-based).
+    pub fn of_roller(&self, j: usize) -> impl Iterator<Item = &RollerDefect> {
+        self.rollers.iter().filter(move |d| d.roller == j)
+    }
+
+    /// The drop (m) of roller `j`'s surface at body angle `chi` and axial station `s`
+    /// against the cup (`on_cup`) or the cone, and its derivative per metre of arc: the
+    /// deepest of its pits there.
+    #[inline]
+    pub fn roller_drop(&self, j: usize, on_cup: bool, chi: f64, s: f64) -> (f64, f64) {
+        self.of_roller(j).fold((0.0, 0.0), |deepest, d| {
+            let drop = d.drop(if on_cup { &d.on_cup } else { &d.on_cone }, chi, s);
+            if drop.0 > deepest.0 {
+                drop
+            } else {
+                deepest
+            }
+        })
+    }
+
+    /// The rollers (0-based, ascending, each once) that carry a defect.
+    pub fn defective_rollers(&self) -> Vec<usize> {
+        let mut js: Vec<usize> = self.rollers.iter().map(|d| d.roller).collect();
+        js.sort_unstable();
+        js.dedup();
+        js
+    }
+}
+
 /// Check the defect parameters against the bearing: `raceway_length` (m) the rollers' contact
 /// length along the generatrix, `circumference` (m) the raceway's at its mid radius, `roller_
 /// diameter` (m) the rollers' mean diameter, `rollers` their number. The first bad value: its
 /// parameter's name and what is wrong.
 pub fn validate(
     p: &DefectParameters,
+    names: &DefectNames,
     raceway_length: f64,
     circumference: f64,
     roller_diameter: f64,
@@ -306,20 +421,20 @@ pub fn validate(
     };
     if p.ring == DefectRing::Roller && !(1..=rollers).contains(&(p.roller as usize)) {
         return Err((
-            "defect.roller",
+            names.roller,
             format!("must name one of the {rollers} rollers (1 to {rollers}), got {}", p.roller),
         ));
     }
-    finite("defect.angle", p.angle)?;
-    finite("defect.length", p.length)?;
-    finite("defect.width", p.width)?;
-    finite("defect.depth", p.depth)?;
+    finite(names.angle, p.angle)?;
+    finite(names.length, p.length)?;
+    finite(names.width, p.width)?;
+    finite(names.depth, p.depth)?;
     if !(p.length > 0.0) {
-        return Err(("defect.length", format!("must be positive, got {} m", p.length)));
+        return Err((names.length, format!("must be positive, got {} m", p.length)));
     }
     if p.length >= roller_diameter || p.length >= circumference {
         return Err((
-            "defect.length",
+            names.length,
             format!(
                 "{} m: a roller of {:.4} m diameter would fall to the bottom of a defect this long; a local defect is shorter than the roller's diameter",
                 p.length, roller_diameter
@@ -327,11 +442,11 @@ pub fn validate(
         ));
     }
     if !(p.width > 0.0) {
-        return Err(("defect.width", format!("must be positive, got {} m", p.width)));
+        return Err((names.width, format!("must be positive, got {} m", p.width)));
     }
     if p.width > raceway_length {
         return Err((
-            "defect.width",
+            names.width,
             format!(
                 "{} m reaches outside the raceway: the rollers' contact length is {:.4} m",
                 p.width, raceway_length
@@ -339,11 +454,11 @@ pub fn validate(
         ));
     }
     if !(p.depth > 0.0) {
-        return Err(("defect.depth", format!("must be positive, got {} m", p.depth)));
+        return Err((names.depth, format!("must be positive, got {} m", p.depth)));
     }
     if p.depth > 0.5 * roller_diameter {
         return Err((
-            "defect.depth",
+            names.depth,
             format!(
                 "{} m is deeper than a roller of {:.4} m diameter can reach (its radius)",
                 p.depth, roller_diameter
@@ -434,7 +549,7 @@ mod tests {
             depth: 50e-6,
             edge: Edge::Sharp,
         };
-        let check = |p: DefectParameters| validate(&p, 30e-3, 0.6, 20e-3, 17);
+        let check = |p: DefectParameters| validate(&p, &NAMES[0], 30e-3, 0.6, 20e-3, 17);
         assert!(check(good).is_ok());
         for (bad, name) in [
             (DefectParameters { width: 40e-3, ..good }, "defect.width"),

@@ -135,9 +135,12 @@ pub struct Parameters {
     /// (`mixedLubrication`, `tribology::mixed`).
     #[serde(default)]
     pub mixed_lubrication: crate::tribology::MixedLaw,
-    /// A local defect (`defect.*`, `crate::defect`).
+    /// A local defect (`defect.*`, `crate::defect`) and up to three more (`defect[2].*` to
+    /// `defect[4].*`).
     #[serde(default)]
     pub defect: crate::defect::DefectParameters,
+    #[serde(default)]
+    pub further_defects: [crate::defect::DefectParameters; crate::defect::FURTHER_DEFECTS],
     /// The cup's radial support (`housing.*`, `crate::housing`).
     #[serde(default)]
     pub housing: crate::housing::HousingParameters,
@@ -257,6 +260,18 @@ impl Parameters {
         }
     }
 
+    /// The bearing's local defects (`defect.*`, `defect[2].*` ...), those set.
+    pub fn defects(&self) -> impl Iterator<Item = &crate::defect::DefectParameters> {
+        std::iter::once(&self.defect)
+            .chain(&self.further_defects)
+            .filter(|d| d.ring != crate::defect::DefectRing::None)
+    }
+
+    /// Whether the bearing has a local defect.
+    pub fn has_defect(&self) -> bool {
+        self.defects().next().is_some()
+    }
+
     /// The defaults a bearing description carries.
     pub fn from_bearing(b: &Bearing) -> Parameters {
         Parameters {
@@ -318,6 +333,7 @@ impl Parameters {
             mixed_lubrication: crate::tribology::MixedLaw::FilmRatio,
             // a healthy bearing
             defect: crate::defect::DefectParameters::default(),
+            further_defects: Default::default(),
             housing: crate::housing::HousingParameters::default(),
             oil_nu: 0.0,
         }
@@ -483,14 +499,12 @@ impl Parameters {
                 ),
             );
         }
-        if let Err((name, message)) = crate::defect::validate(
-            &self.defect,
-            b.roller_length,
-            std::f64::consts::PI * b.pitch_diameter,
-            d,
-            b.roller_count,
-        ) {
-            return bad(name, message);
+        let every = std::iter::once(&self.defect).chain(&self.further_defects);
+        for (p, names) in every.zip(&crate::defect::NAMES) {
+            let circumference = std::f64::consts::PI * b.pitch_diameter;
+            if let Err((name, message)) = crate::defect::validate(p, names, b.roller_length, circumference, d, b.roller_count) {
+                return bad(name, message);
+            }
         }
         if let Err((name, message)) = self.housing.validate() {
             return bad(name, message);

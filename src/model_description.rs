@@ -243,11 +243,18 @@ fn render(bearing: &Bearing, guid: &str) -> String {
     x
 }
 
-/// `<TypeDefinitions>`: one Enumeration type per mode parameter.
+/// `<TypeDefinitions>`: one Enumeration type per mode (parameters may share one).
 fn write_type_definitions(x: &mut String) {
     let _ = writeln!(x, "  <TypeDefinitions>");
+    // a type several parameters share (`defect.ring`, `defect[2].ring`, ...) once, described
+    // by the first of them
+    let mut written: Vec<&str> = Vec::new();
     for row in variables::TABLE {
         let Some(e) = row.enumeration else { continue };
+        if written.contains(&e.name) {
+            continue;
+        }
+        written.push(e.name);
         let first = row.min.unwrap_or(0.0) as i64;
         let _ = writeln!(
             x,

@@ -78,10 +78,11 @@ struct State {
     outputs: Outputs,
     time: f64,
     cage_angle: f64,
-    /// Fidelity 0: the turn of a cone or roller defect since the start (rad;
-    /// `QuasiStatic::set_defect_turn`). Fidelity 1 keeps it in its state.
+    /// Fidelity 0: the turns since the start of the cone and of the rollers' spin, where
+    /// their defects are (rad; `QuasiStatic::set_defect_turns`). Fidelity 1 keeps them in its
+    /// state.
     #[serde(default)]
-    defect_turn: f64,
+    defect_turns: [f64; 2],
     /// Inputs or parameters changed since the outputs were computed.
     dirty: bool,
     /// Warm start of the quasi-static solver (empty before the first solve).
@@ -125,6 +126,74 @@ fn linearise(linear: &mut Linearisation, inputs: &Inputs, cage_angle: f64, out: 
     }
 }
 
+/// The value references of each defect's parameters, the first's (`defect.*`) and the
+/// further ones' (`defect[2].*` ...), in the order ring, roller, angle, length, width, depth,
+/// edge.
+const DEFECT_VRS: [[u32; 7]; 1 + crate::defect::FURTHER_DEFECTS] = [
+    [
+        var::DEFECT_RING,
+        var::DEFECT_ROLLER,
+        var::DEFECT_ANGLE,
+        var::DEFECT_LENGTH,
+        var::DEFECT_WIDTH,
+        var::DEFECT_DEPTH,
+        var::DEFECT_EDGE,
+    ],
+    [
+        var::DEFECT_2_RING,
+        var::DEFECT_2_ROLLER,
+        var::DEFECT_2_ANGLE,
+        var::DEFECT_2_LENGTH,
+        var::DEFECT_2_WIDTH,
+        var::DEFECT_2_DEPTH,
+        var::DEFECT_2_EDGE,
+    ],
+    [
+        var::DEFECT_3_RING,
+        var::DEFECT_3_ROLLER,
+        var::DEFECT_3_ANGLE,
+        var::DEFECT_3_LENGTH,
+        var::DEFECT_3_WIDTH,
+        var::DEFECT_3_DEPTH,
+        var::DEFECT_3_EDGE,
+    ],
+    [
+        var::DEFECT_4_RING,
+        var::DEFECT_4_ROLLER,
+        var::DEFECT_4_ANGLE,
+        var::DEFECT_4_LENGTH,
+        var::DEFECT_4_WIDTH,
+        var::DEFECT_4_DEPTH,
+        var::DEFECT_4_EDGE,
+    ],
+];
+
+/// Which defect (0: `defect.*`) and which of its parameters (`DEFECT_VRS`' order) the value
+/// reference `vr` is.
+fn defect_field(vr: u32) -> Option<(usize, usize)> {
+    DEFECT_VRS
+        .iter()
+        .enumerate()
+        .find_map(|(k, row)| row.iter().position(|v| *v == vr).map(|f| (k, f)))
+}
+
+/// Defect `k` of the parameters (0: `defect.*`, then `defect[2].*` ...).
+fn defect(p: &Parameters, k: usize) -> &crate::defect::DefectParameters {
+    if k == 0 {
+        &p.defect
+    } else {
+        &p.further_defects[k - 1]
+    }
+}
+
+fn defect_mut(p: &mut Parameters, k: usize) -> &mut crate::defect::DefectParameters {
+    if k == 0 {
+        &mut p.defect
+    } else {
+        &mut p.further_defects[k - 1]
+    }
+}
+
 /// Magic and version of the serialized state format.
 const STATE_MAGIC: &[u8; 8] = b"TRBSTAT6";
 
@@ -148,7 +217,7 @@ impl Simulation {
                 outputs,
                 time: 0.0,
                 cage_angle,
-                defect_turn: 0.0,
+                defect_turns: [0.0; 2],
                 dirty: true,
                 warm_start: Vec::new(),
                 report: SolveReport::default(),
@@ -195,7 +264,7 @@ impl Simulation {
     pub fn initialize(&mut self, start_time: f64) -> Result<SolveReport, ModelError> {
         self.state.time = start_time;
         self.state.cage_angle = self.state.params.cage_angle0;
-        self.state.defect_turn = 0.0;
+        self.state.defect_turns = [0.0; 2];
         self.state.dirty = true;
         self.state.dynamic = None;
         self.model = None;
@@ -211,7 +280,7 @@ impl Simulation {
     /// read, saved or stepped again.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<SolveReport, ModelError> {
         let st = &self.state;
-        let start = (st.time, st.cage_angle, st.inputs, st.rates, st.dirty);
+        let start = (st.time, st.cage_angle, st.defect_turns, st.inputs, st.rates, st.dirty);
         // at fidelity 1 the range check's quasi-static solve moves the warm start (a solve
         // at fidelity 0 that fails leaves it as it was)
         let dynamic = self.state.params.fidelity == Fidelity::Dynamic;
@@ -221,7 +290,7 @@ impl Simulation {
         let result = self.step(t, h);
         if result.is_err() {
             let st = &mut self.state;
-            (st.time, st.cage_angle, st.inputs, st.rates, st.dirty) = start;
+            (st.time, st.cage_angle, st.defect_turns, st.inputs, st.rates, st.dirty) = start;
             if dynamic {
                 st.warm_start.clone_from(&self.warm_start_backup);
             }
@@ -258,7 +327,9 @@ impl Simulation {
                 // at the step's middle
                 let middle = st.inputs.ramped(&st.rates, 0.5 * h);
                 st.cage_angle = wrap_angle(st.cage_angle + m.cage_speed(&middle) * h);
-                st.defect_turn = wrap_angle(st.defect_turn + m.defect_turn_rate(&middle) * h);
+                for (turn, rate) in st.defect_turns.iter_mut().zip(m.defect_turn_rates(&middle)) {
+                    *turn = wrap_angle(*turn + rate * h);
+                }
             }
             Model::Dynamic { dynamic, .. } => {
                 let ds = st.dynamic.as_mut().expect("dynamic state initialised");
@@ -427,7 +498,7 @@ impl Simulation {
         let st = &mut self.state;
         let report = match self.model.as_mut().expect("model built") {
             Model::QuasiStatic { qs, linear } => {
-                qs.set_defect_turn(st.defect_turn);
+                qs.set_defect_turns(st.defect_turns);
                 // a refused solve may have written outputs: the last valid ones are kept
                 let report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
                     Ok(report) => report,
@@ -573,10 +644,11 @@ impl Simulation {
             var::WORK_BUDGET => p.work_budget,
             var::CONTAMINATION_E_C => p.contamination_ec,
             var::SUPPLY_LEVEL => p.supply_level,
-            var::DEFECT_ANGLE => p.defect.angle,
-            var::DEFECT_LENGTH => p.defect.length,
-            var::DEFECT_WIDTH => p.defect.width,
-            var::DEFECT_DEPTH => p.defect.depth,
+            v if defect_field(v).is_some() => {
+                let (k, field) = defect_field(v).expect("checked");
+                let d = defect(p, k);
+                [0.0, 0.0, d.angle, d.length, d.width, d.depth, 0.0][field]
+            }
             var::HOUSING_MASS => p.housing.mass,
             var::HOUSING_STIFFNESS => p.housing.stiffness,
             var::HOUSING_DAMPING => p.housing.damping,
@@ -703,10 +775,16 @@ impl Simulation {
             var::WORK_BUDGET => &mut p.work_budget,
             var::CONTAMINATION_E_C => &mut p.contamination_ec,
             var::SUPPLY_LEVEL => &mut p.supply_level,
-            var::DEFECT_ANGLE => &mut p.defect.angle,
-            var::DEFECT_LENGTH => &mut p.defect.length,
-            var::DEFECT_WIDTH => &mut p.defect.width,
-            var::DEFECT_DEPTH => &mut p.defect.depth,
+            v if defect_field(v).is_some() => {
+                let (k, field) = defect_field(v).expect("checked");
+                let d = defect_mut(p, k);
+                match field {
+                    2 => &mut d.angle,
+                    3 => &mut d.length,
+                    4 => &mut d.width,
+                    _ => &mut d.depth,
+                }
+            }
             var::HOUSING_MASS => &mut p.housing.mass,
             var::HOUSING_STIFFNESS => &mut p.housing.stiffness,
             var::HOUSING_DAMPING => &mut p.housing.damping,
@@ -789,9 +867,11 @@ impl Simulation {
             var::OIL_PIEZOVISCOSITY => p.piezoviscosity as i32,
             var::SUPPLY => p.supply as i32,
             var::MIXED_LUBRICATION => p.mixed_lubrication as i32,
-            var::DEFECT_RING => p.defect.ring as i32,
-            var::DEFECT_ROLLER => p.defect.roller as i32,
-            var::DEFECT_EDGE => p.defect.edge as i32,
+            v if defect_field(v).is_some() => {
+                let (k, field) = defect_field(v).expect("checked");
+                let d = defect(p, k);
+                [d.ring as i32, d.roller as i32, 0, 0, 0, 0, d.edge as i32][field]
+            }
             var::LOADED_ROLLERS => self.state.outputs.loaded_rollers,
             var::SOLVER_ITERATIONS => self.state.outputs.solver_iterations,
             var::INTEGRATOR_STEPS => self.state.outputs.integrator_steps,
@@ -833,13 +913,19 @@ impl Simulation {
             var::OUTER_LOBES => p.outer_lobes = value as u32,
             var::INTEGRATOR => p.integrator = value as u32,
             var::SUPPLY => p.supply = crate::tribology::Supply::from_index(value as i64).unwrap_or(p.supply),
-            var::DEFECT_RING => p.defect.ring = crate::defect::DefectRing::from_index(value).unwrap_or(p.defect.ring),
-            var::DEFECT_ROLLER => p.defect.roller = value as u32,
-            var::DEFECT_EDGE => {
-                p.defect.edge = if value == 0 {
-                    crate::defect::Edge::Sharp
-                } else {
-                    crate::defect::Edge::Rounded
+            v if defect_field(v).is_some() => {
+                let (k, field) = defect_field(v).expect("checked");
+                let d = defect_mut(p, k);
+                match field {
+                    0 => d.ring = crate::defect::DefectRing::from_index(value).unwrap_or(d.ring),
+                    1 => d.roller = value as u32,
+                    _ => {
+                        d.edge = if value == 0 {
+                            crate::defect::Edge::Sharp
+                        } else {
+                            crate::defect::Edge::Rounded
+                        }
+                    }
                 }
             }
             var::MIXED_LUBRICATION => {

@@ -572,11 +572,11 @@ fn study_validate_quick_writes_every_section() {
     assert!(!text.contains("Not computed"), "a case failed:\n{text}");
 }
 
-/// `study defects --quick` writes defects.md and its figures; the envelope of the cup spall's
-/// signal peaks at the kinematic outer-race defect frequency within 1 % (10–15 s in
-/// release: two 0.1 s dynamic runs side by side).
+/// `study defects --quick` writes defects.md and its figures for the cup, the cone and a roller;
+/// the envelope of each spall's signal peaks at its kinematic defect frequency within 1 %
+/// (the outer-race, the inner-race, twice the roller's spin; four 0.05 s dynamic runs).
 #[test]
-fn study_defects_quick_finds_the_outer_race_frequency() {
+fn study_defects_quick_finds_the_defect_frequencies() {
     let dir = Scratch::new("defects_quick");
     let o = trb(&["study", "defects", "--quick", "--docs", p(&dir.0)]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -584,23 +584,29 @@ fn study_defects_quick_finds_the_outer_race_frequency() {
     for needle in [
         "## The characteristic frequencies",
         "## Cup (outer race)",
+        "## Cone (inner race)",
+        "## Roller",
         "## The healthy bearing",
         "| Z × FTF (kinematic) |",
     ] {
         assert!(text.contains(needle), "no {needle:?} in defects.md:\n{text}");
     }
-    for name in ["time", "spectrum", "envelope"] {
-        let svg = std::fs::read_to_string(dir.path(&format!("figures/defects_cup_{name}.svg"))).unwrap();
-        assert!(svg.starts_with("<svg") && svg.contains("polyline"), "{name}: {svg}");
+    for location in ["cup", "cone", "roller"] {
+        for name in ["time", "spectrum", "envelope"] {
+            let svg = std::fs::read_to_string(dir.path(&format!("figures/defects_{location}_{name}.svg"))).unwrap();
+            assert!(svg.starts_with("<svg") && svg.contains("polyline"), "{location} {name}: {svg}");
+        }
     }
-    // | BPFO | kinematic (Hz) | peak (Hz) | error (%) | ...
-    let row = text
-        .lines()
-        .find(|l| l.starts_with("| BPFO |"))
-        .unwrap_or_else(|| panic!("no BPFO row in:\n{text}"));
-    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-    let (kinematic, found): (f64, f64) = (cells[2].parse().unwrap(), cells[3].parse().unwrap());
-    assert!((found / kinematic - 1.0).abs() < 0.01, "{row}");
+    // | BPFO | kinematic (Hz) | peak (Hz) | error (%) | ...: each location's own line
+    for line in ["BPFO", "BPFI", "2 × BSF"] {
+        let row = text
+            .lines()
+            .find(|l| l.starts_with(&format!("| {line} |")))
+            .unwrap_or_else(|| panic!("no {line} row in:\n{text}"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let (kinematic, found): (f64, f64) = (cells[2].parse().unwrap(), cells[3].parse().unwrap());
+        assert!((found / kinematic - 1.0).abs() < 0.01, "{row}");
+    }
     let words: Vec<&str> = text.split(|c: char| !c.is_alphanumeric()).collect();
     for bad in ["NaN", "nan", "inf", "Infinity"] {
         assert!(!words.contains(&bad), "{bad} in defects.md");

@@ -423,3 +423,67 @@ fn at_fidelity_0_cone_and_roller_defects_take_load_off_their_roller() {
         );
     }
 }
+
+/// Several defects at once (`defect.*` and `defect[2].*` ...):
+/// - fidelity 0: two cup spalls two pitches apart take load off both rollers that stand on
+///   them, and a bad further defect is refused by its own name;
+/// - fidelity 1, a cup spall with a cone spall, on the housing: the envelope of `cup.ay` shows
+///   both the outer-race and the inner-race frequency within 1 %, and the energy books close.
+#[test]
+fn several_defects_at_once() {
+    let b = Bearing::preset(PRESET).unwrap();
+    let z = b.roller_count;
+    let pitch = std::f64::consts::TAU / z as f64;
+    let second = |ring: i32, angle: f64| -> (Vec<(u32, i32)>, Vec<(u32, f64)>) {
+        (
+            vec![(var::DEFECT_RING, 1), (var::DEFECT_2_RING, ring)],
+            [
+                spall(),
+                vec![
+                    (var::DEFECT_2_ANGLE, angle),
+                    (var::DEFECT_2_LENGTH, 1.5e-3),
+                    (var::DEFECT_2_WIDTH, 10e-3),
+                    (var::DEFECT_2_DEPTH, 0.1e-3),
+                    (var::CAGE_ANGLE0, 0.0),
+                ],
+            ]
+            .concat(),
+        )
+    };
+    let (ints, reals) = second(1, 2.0 * pitch);
+    let two = element(0, &ints, &reals).outputs().unwrap().clone();
+    let healthy = element(0, &[], &[(var::CAGE_ANGLE0, 0.0)]).outputs().unwrap().clone();
+    eprintln!(
+        "two cup spalls: rollers 1 and 3 at {:.0} and {:.0} N against {:.0} and {:.0} N healthy",
+        two.qo[0], two.qo[2], healthy.qo[0], healthy.qo[2]
+    );
+    assert!(two.qo[0] < 0.95 * healthy.qo[0] && two.qo[2] < 0.95 * healthy.qo[2]);
+    // a further defect without a depth is refused by its own name
+    let mut s = Simulation::new(b.clone());
+    for (vr, v) in [(var::DEFECT_3_RING, 2), (var::FIDELITY, 0)] {
+        s.set_integer(vr, v).unwrap();
+    }
+    for (vr, v) in [(var::DEFECT_3_LENGTH, 1e-3), (var::DEFECT_3_WIDTH, 5e-3)] {
+        s.set_real(vr, v).unwrap();
+    }
+    match s.initialize(0.0) {
+        Err(ModelError::InvalidParameter { name, message }) => assert_eq!(name, "defect[3].depth", "{message}"),
+        other => panic!("defect[3] without a depth: {other:?}"),
+    }
+    // fidelity 1: the cup's and the cone's frequencies in one signal
+    let (fs, fc, bpfi, _) = kinematic();
+    let bpfo = 17.0 * fc;
+    let (ints, reals) = second(2, 0.0);
+    let dt = 5e-5;
+    let r = record(&ints, &[reals, housing()].concat(), dt, 2000);
+    let envelope = squared_envelope(&r.ay);
+    let (f_out, _) = peak(&envelope, dt, 0.95 * bpfo, 1.05 * bpfo);
+    let (f_in, _) = peak(&envelope, dt, 0.95 * bpfi, 1.05 * bpfi);
+    eprintln!(
+        "cup and cone spalls: envelope peaks {f_out:.1} Hz against BPFO {bpfo:.1} Hz, {f_in:.1} Hz against BPFI {bpfi:.1} Hz (shaft {fs:.1} Hz); energy residual {:.2e}; wall {:.1} s",
+        r.residual, r.wall
+    );
+    assert!((f_out / bpfo - 1.0).abs() < 0.01, "{f_out} against {bpfo}");
+    assert!((f_in / bpfi - 1.0).abs() < 0.01, "{f_in} against {bpfi}");
+    assert!(r.residual.abs() < 0.01, "energy residual {}", r.residual);
+}

@@ -27,7 +27,7 @@ use super::Layout;
 use super::{RollerRecord, Totals, CAGE, CONE, PER_ROLLER};
 use crate::bearing::Bearing;
 use crate::contact::{LineLaw, PointContact};
-use crate::defect::{DefectRing, Pit, RacewayDefect, RollerDefect};
+use crate::defect::LocalDefects;
 use crate::fastmath as fm;
 use crate::geometry::Geometry;
 use crate::journal_film::ShortJournal;
@@ -72,10 +72,8 @@ pub(crate) struct Constants {
     half_clearance: f64,
     pub(crate) lobes: u32,
     waveform: f64,
-    /// A local defect (`crate::defect`): on the cup, on the cone, or on one roller.
-    cup_defect: Option<RacewayDefect>,
-    cone_defect: Option<RacewayDefect>,
-    roller_defect: Option<RollerDefect>,
+    /// The local defects (`crate::defect`) on the cup, on the cone and on rollers.
+    defects: LocalDefects,
     /// Where the states sit.
     pub(crate) layout: Layout,
     /// The cup's support where the cup moves (`crate::housing`).
@@ -258,9 +256,7 @@ impl Constants {
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
-            cup_defect: RacewayDefect::new(&p.defect, DefectRing::Cup, b.roller_mean_radius(), &g.cup),
-            cone_defect: RacewayDefect::new(&p.defect, DefectRing::Cone, b.roller_mean_radius(), &g.cone),
-            roller_defect: RollerDefect::new(&p.defect, b.roller_mean_radius(), &g.cup, &g.cone),
+            defects: LocalDefects::new(p.defects(), b.roller_mean_radius(), &g.cup, &g.cone),
             layout: Layout::new(p, g.z),
             housing: p.housing.is_flexible().then_some(p.housing),
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
@@ -342,7 +338,7 @@ pub(crate) fn prescribed_cone(c: &Constants, inputs: &Inputs) -> [Option<f64>; 3
 /// Roller `rec`'s share of the global rows of the right-hand side (cone, cage and housing
 /// accelerations, the defective roller's spin), in the order of the state vector's global
 /// states (`Layout`).
-pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) {
+pub(crate) fn global_shares(c: &Constants, j: usize, rec: &RollerRecord, out: &mut [f64]) {
     out.iter_mut().for_each(|v| *v = 0.0);
     for k in 0..3 {
         out[CONE + 3 + k] = if c.prescribed[k] { 0.0 } else { rec.f_cone[k] / c.m_cone };
@@ -356,8 +352,8 @@ pub(crate) fn global_shares(c: &Constants, rec: &RollerRecord, out: &mut [f64]) 
         out[h + 2] = rec.f_cup[1] / housing.mass;
         out[h + 3] = rec.f_cup[2] / housing.mass;
     }
-    if let (Some(a), Some(_)) = (c.layout.defect_turn, &c.roller_defect) {
-        out[a] = rec.defect_spin;
+    if let Some(k) = c.layout.spin_of(j) {
+        out[k] = rec.defect_spin;
     }
 }
 
@@ -736,9 +732,9 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
     } else {
         (-c.half_clearance * c.cos_o, 0.0)
     };
-    if let (true, Some(d)) = (defect, &c.cup_defect) {
+    if defect {
         let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
-        let (drop, drop_psi) = d.drop(psi, rho, d.station(q[0], rho));
+        let (drop, drop_psi) = LocalDefects::raceway_drop(&c.defects.cup, psi, q[0], rho);
         gap -= drop;
         gap_psi -= drop_psi;
     }
@@ -746,33 +742,31 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
 }
 
 /// The extra interference of the cone at contact point `q` (the cone's frame) from its local
-/// defect, turned by `turn` since t = 0, and its derivative along the azimuth.
+/// defects, turned by `turn` since t = 0, and its derivative along the azimuth.
 #[inline]
 fn cone_gap(c: &Constants, q: &V3, turn: f64) -> (f64, f64) {
-    match &c.cone_defect {
-        Some(d) => {
-            let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
-            let (drop, drop_psi) = d.drop(libm::atan2(q[2], q[1]) - turn, rho, d.station(q[0], rho));
-            (-drop, -drop_psi)
-        }
-        None => (0.0, 0.0),
-    }
+    let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
+    let (drop, drop_psi) = LocalDefects::raceway_drop(&c.defects.cone, libm::atan2(q[2], q[1]) - turn, q[0], rho);
+    (-drop, -drop_psi)
 }
 
-/// A roller that carries a defect (`crate::defect::RollerDefect`): its outward normal
-/// (global frame), its spin angle since t = 0 and its centre of mass's
-/// offset along the axis from its middle.
-struct RollerBody {
-    defect: RollerDefect,
+/// A roller that carries defects (`crate::defect::RollerDefect`): its index, its outward
+/// normal (global frame), its spin angle since t = 0 and its centre of mass's offset along the
+/// axis from its middle.
+struct RollerBody<'a> {
+    defects: &'a LocalDefects,
+    j: usize,
     normal: V3,
     spin: f64,
     cm: f64,
 }
 
-/// The defective roller as one raceway's contacts see it, in that raceway's frame.
+/// The defective roller as one raceway's contacts see it, in that raceway's frame: against
+/// the cup (`on_cup`) or the cone.
 struct RollerPit<'a> {
-    defect: &'a RollerDefect,
-    pit: &'a Pit,
+    defects: &'a LocalDefects,
+    j: usize,
+    on_cup: bool,
     pos: V3,
     a: V3,
     /// The roller's body frame about its axis before its spin: the outward normal and a x it.
@@ -782,13 +776,14 @@ struct RollerPit<'a> {
     cm: f64,
 }
 
-impl RollerBody {
-    /// As the contacts of `race` see it, with the outward normal `normal` in the race's frame
-    /// and the pit `pit` that raceway bridges.
-    fn in_frame<'a>(&'a self, race: &Race, normal: V3, pit: &'a Pit) -> RollerPit<'a> {
+impl<'a> RollerBody<'a> {
+    /// As the contacts of `race` (the cup: `on_cup`) see it, with the outward normal `normal`
+    /// in the race's frame.
+    fn in_frame(&self, race: &Race, normal: V3, on_cup: bool) -> RollerPit<'a> {
         RollerPit {
-            defect: &self.defect,
-            pit,
+            defects: self.defects,
+            j: self.j,
+            on_cup,
             pos: race.pos,
             a: race.a,
             u1: normal,
@@ -810,7 +805,7 @@ impl RollerPit<'_> {
         let along = lever.dot(&self.a);
         let d = lever - self.a * along;
         let chi = libm::atan2(d.dot(&self.u2), d.dot(&self.u1)) - self.spin;
-        let (drop, slope) = self.defect.drop(self.pit, chi, along + self.cm);
+        let (drop, slope) = self.defects.roller_drop(self.j, self.on_cup, chi, along + self.cm);
         if drop == 0.0 && slope == 0.0 {
             return (0.0, 0.0);
         }
@@ -1132,7 +1127,7 @@ struct Frame {
     cup_pos: V3,
     cup_vel: V3,
     cup_orbit: V3,
-    /// The turning angle of a cone or roller defect (rad; `Layout::defect_turn`).
+    /// The cone's turn since t = 0 with a cone defect (rad; `Layout::cone_turn`).
     turn: f64,
     /// The supply's starvation at the current speed.
     starved: Starved,
@@ -1407,11 +1402,12 @@ fn evaluate_roller(
     let da_dtilt = m_in * cf;
     let da_dskew = -u * sf - e_t * cf;
     let dd = c.dd_half[j];
-    // a defect on this roller: its body frame (the outward normal, turned with its spin)
-    let on_roller = c.roller_defect.filter(|d| d.roller == j).map(|d| RollerBody {
-        defect: d,
+    // defects on this roller: its body frame (the outward normal, turned with its spin)
+    let on_roller = c.layout.spin_of(j).map(|k| RollerBody {
+        defects: &c.defects,
+        j,
         normal: m_in,
-        spin: c.layout.defect_turn.map_or(0.0, |k| y[k]),
+        spin: y[k],
         cm: c.cm,
     });
 
@@ -1438,14 +1434,14 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let near_defect = c.cup_defect.is_some_and(|d| {
-        d.near(
+    let near_defect = !c.defects.cup.is_empty()
+        && LocalDefects::near(
+            &c.defects.cup,
             libm::atan2(cup.pos[2], cup.pos[1]),
             (cup.pos[1] * cup.pos[1] + cup.pos[2] * cup.pos[2]).sqrt(),
-        )
-    });
+        );
     let cup_sum = if let Some(body) = &on_roller {
-        let body = body.in_frame(&cup, body.normal, &body.defect.on_cup);
+        let body = body.in_frame(&cup, body.normal, true);
         race_slices(c, &cup, dd, cup_loads, |q: &V3| {
             let (gap, gap_psi) = cup_gap(c, q, near_defect);
             let (drop, drop_psi) = body.gap(q);
@@ -1479,14 +1475,14 @@ fn evaluate_roller(
         starved: f.starved,
     };
     // a cone defect in the cone's material frame, turned by `f.turn` since t = 0
-    let near_cone_defect = c.cone_defect.is_some_and(|d| {
-        d.near(
+    let near_cone_defect = !c.defects.cone.is_empty()
+        && LocalDefects::near(
+            &c.defects.cone,
             libm::atan2(cone.pos[2], cone.pos[1]) - f.turn,
             (cone.pos[1] * cone.pos[1] + cone.pos[2] * cone.pos[2]).sqrt(),
-        )
-    });
+        );
     let cone_sum = if near_cone_defect || on_roller.is_some() {
-        let body = on_roller.as_ref().map(|b| b.in_frame(&cone, f.rot_t * b.normal, &b.defect.on_cone));
+        let body = on_roller.as_ref().map(|b| b.in_frame(&cone, f.rot_t * b.normal, false));
         race_slices(c, &cone, dd, cone_loads, |q: &V3| {
             let (mut gap, mut gap_psi) = if near_cone_defect { cone_gap(c, q, f.turn) } else { (0.0, 0.0) };
             if let Some(body) = &body {
@@ -1677,7 +1673,7 @@ pub(crate) fn evaluate(
         cup_pos,
         cup_vel,
         cup_orbit: V3::x().cross(&cup_pos),
-        turn: c.layout.defect_turn.map_or(0.0, |k| y[k]),
+        turn: c.layout.cone_turn.map_or(0.0, |k| y[k]),
         starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
     };
     rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
@@ -1767,11 +1763,11 @@ pub(crate) fn evaluate(
             dy[h + 2] = tot.cup_acceleration[1];
             dy[h + 3] = tot.cup_acceleration[2];
         }
-        if let Some(k) = c.layout.defect_turn {
-            dy[k] = match &c.roller_defect {
-                Some(d) => records[d.roller].defect_spin,
-                None => inputs.speed,
-            };
+        if let Some(k) = c.layout.cone_turn {
+            dy[k] = inputs.speed;
+        }
+        for &(j, k) in &c.layout.roller_spins {
+            dy[k] = records[j].defect_spin;
         }
         // cage
         if c.cage_dynamic {

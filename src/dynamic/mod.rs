@@ -67,16 +67,18 @@ pub const PER_ROLLER: usize = 11;
 /// where the element needs them, so that a bearing without them integrates exactly the states
 /// (and the bits) it did before they were added:
 /// - the housing's u_y, u_z, u_y', u_z' (`housing.mass` > 0, `crate::housing`);
-/// - the turning angle of a defect that turns: the cone's turn (a cone defect) or the spin
-///   angle of the defective roller (a roller defect), zero at t = 0.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// - the turn of each defect that turns: the cone's turn (with a cone defect), and the spin
+///   angle of each roller that carries a defect, relative to its body frame; zero at t = 0.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Layout {
     /// Number of global states.
     pub globals: usize,
     /// First of the housing's four states.
     pub housing: Option<usize>,
-    /// The defect's turning angle.
-    pub defect_turn: Option<usize>,
+    /// The cone's turn.
+    pub cone_turn: Option<usize>,
+    /// Per roller that carries a defect (0-based, ascending): its spin angle's state.
+    pub roller_spins: Vec<(usize, usize)>,
     pub z: usize,
 }
 
@@ -84,20 +86,38 @@ impl Layout {
     pub fn new(p: &Parameters, z: usize) -> Layout {
         use crate::defect::DefectRing;
         let mut globals = ROLLERS;
-        let housing = p.housing.is_flexible().then(|| {
-            globals += 4;
-            globals - 4
-        });
-        let defect_turn = matches!(p.defect.ring, DefectRing::Cone | DefectRing::Roller).then(|| {
-            globals += 1;
-            globals - 1
-        });
+        let mut take = |n: usize| {
+            globals += n;
+            globals - n
+        };
+        let housing = p.housing.is_flexible().then(|| take(4));
+        let cone_turn = p.defects().any(|d| d.ring == DefectRing::Cone).then(|| take(1));
+        let mut rollers: Vec<usize> = p
+            .defects()
+            .filter(|d| d.ring == DefectRing::Roller)
+            .map(|d| d.roller.saturating_sub(1) as usize)
+            .collect();
+        rollers.sort_unstable();
+        rollers.dedup();
+        let roller_spins = rollers.into_iter().map(|j| (j, take(1))).collect();
         Layout {
             globals,
             housing,
-            defect_turn,
+            cone_turn,
+            roller_spins,
             z,
         }
+    }
+
+    /// The state of roller `j`'s spin angle, if it carries a defect.
+    #[inline]
+    pub fn spin_of(&self, j: usize) -> Option<usize> {
+        self.roller_spins.iter().find(|(r, _)| *r == j).map(|(_, k)| *k)
+    }
+
+    /// Every defect's turn state: the cone's, then the rollers' spins.
+    pub fn turns(&self) -> impl Iterator<Item = usize> + '_ {
+        self.cone_turn.into_iter().chain(self.roller_spins.iter().map(|(_, k)| *k))
     }
 
     /// Offset of roller `j`'s states.
@@ -320,7 +340,7 @@ impl BlockSystem for Model<'_> {
     fn shares(&self, out: &mut [f64]) {
         for (j, r) in self.eval.records.iter().enumerate() {
             let ng = self.c.layout.globals;
-            contacts::global_shares(self.c, r, &mut out[j * ng..(j + 1) * ng]);
+            contacts::global_shares(self.c, j, r, &mut out[j * ng..(j + 1) * ng]);
         }
     }
 }
@@ -891,7 +911,7 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
             set(h + 2 + k, l_ref * 1e3, 0.0);
         }
     }
-    if let Some(a) = c.layout.defect_turn {
+    for a in c.layout.turns() {
         // an angle that moves a point of the pitch circle by the reference length
         set(a, l_ref / r_p, 0.0);
     }
@@ -924,7 +944,7 @@ fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
     let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
     scale[CAGE + 2] = 1.0;
     let layout = Layout::new(p, g.z);
-    if let Some(a) = layout.defect_turn {
+    for a in layout.turns() {
         scale[a] = 1.0;
     }
     for j in 0..g.z {
@@ -935,7 +955,7 @@ fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
 
 /// Whether the rollers are interchangeable: the same diameter deviation, none with a defect.
 fn identical_rollers(p: &Parameters) -> bool {
-    p.roller_dd.iter().all(|d| *d == p.roller_dd[0]) && p.defect.ring != crate::defect::DefectRing::Roller
+    p.roller_dd.iter().all(|d| *d == p.roller_dd[0]) && !p.defects().any(|d| d.ring == crate::defect::DefectRing::Roller)
 }
 
 /// The global states that move: the cone's translations under force inputs (axially only

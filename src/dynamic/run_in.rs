@@ -129,7 +129,7 @@ impl Dynamic {
         let turned = running.y[CAGE + 2] - start_angle;
         self.turn_back(&mut running, turned);
         // a turning defect starts where its parameters put it
-        if let Some(k) = self.c.layout.defect_turn {
+        for k in self.c.layout.turns() {
             running.y[k] = 0.0;
         }
         self.balance_cone(&mut running, inputs);
@@ -206,7 +206,7 @@ impl Dynamic {
             0
         };
         let shift = whole.rem_euclid(z as i64) as usize;
-        let layout = self.c.layout;
+        let layout = &self.c.layout;
         let rollers = &mut state.y[layout.roller(0)..layout.roller(z)];
         // roller j takes the state of the roller that turned into its place
         rollers.rotate_right(PER_ROLLER * shift);

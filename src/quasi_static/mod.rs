@@ -355,18 +355,14 @@ pub struct QuasiStatic {
     spin_ratio: f64,
     cone_table: SliceTable,
     cup_table: SliceTable,
-    /// A local defect (`crate::defect`) on the cup, the cone or one roller, and per roller the
-    /// cup's and the cone's slice tables with the defect's drop added to the crown (filled for
-    /// the rollers on it, `prepare`); the slices' stations across each raceway (from its
-    /// middle); the turn of a cone or roller defect since t = 0 (rad; `set_defect_turn`).
-    cup_defect: Option<crate::defect::RacewayDefect>,
-    cone_defect: Option<crate::defect::RacewayDefect>,
-    roller_defect: Option<crate::defect::RollerDefect>,
+    /// The local defects (`crate::defect`) on the cup, the cone and rollers, and per roller the
+    /// cup's and the cone's slice tables with the defects' drops added to the crown (filled
+    /// for the rollers on one, `prepare`); the turns since t = 0 of the cone and of the
+    /// rollers' spin (rad; `set_defect_turns`).
+    defects: crate::defect::LocalDefects,
     defect_tables: Vec<SliceTable>,
     cone_defect_tables: Vec<SliceTable>,
-    defect_station: Vec<f64>,
-    cone_defect_station: Vec<f64>,
-    defect_turn: f64,
+    defect_turns: [f64; 2],
     /// This solve is axisymmetric: one roller is evaluated and replicated.
     axisymmetric: bool,
     /// The cone translations (x, y, z) this solve prescribes (`prepare`): all three in
@@ -425,19 +421,11 @@ impl QuasiStatic {
         let vector = params.fidelity == crate::model::Fidelity::QuasiStatic;
         let cone_table = SliceTable::new(&geometry.cone, &geometry.crown, ls, Some(&cone_chi), vector);
         let cup_table = SliceTable::new(&geometry.cup, &geometry.crown, ls, None, vector);
-        use crate::defect::{DefectRing, RacewayDefect, RollerDefect};
-        let radius = bearing.roller_mean_radius();
-        let cup_defect = RacewayDefect::new(&params.defect, DefectRing::Cup, radius, &geometry.cup);
-        let cone_defect = RacewayDefect::new(&params.defect, DefectRing::Cone, radius, &geometry.cone);
-        let roller_defect = RollerDefect::new(&params.defect, radius, &geometry.cup, &geometry.cone);
+        let defects = crate::defect::LocalDefects::new(params.defects(), bearing.roller_mean_radius(), &geometry.cup, &geometry.cone);
         let tables = |table: &SliceTable, on: bool| if on { vec![table.clone(); z] } else { Vec::new() };
-        let defect_tables = tables(&cup_table, cup_defect.is_some() || roller_defect.is_some());
-        let cone_defect_tables = tables(&cone_table, cone_defect.is_some() || roller_defect.is_some());
-        let stations = |d: Option<RacewayDefect>, line: &crate::geometry::ContactLine| {
-            d.map_or_else(Vec::new, |d| line.point.iter().map(|p| d.station(p[0], p[1])).collect())
-        };
-        let defect_station = stations(cup_defect, &geometry.cup);
-        let cone_defect_station = stations(cone_defect, &geometry.cone);
+        let on_rollers = !defects.rollers.is_empty();
+        let defect_tables = tables(&cup_table, !defects.cup.is_empty() || on_rollers);
+        let cone_defect_tables = tables(&cone_table, !defects.cone.is_empty() || on_rollers);
         let skew = params
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
@@ -451,14 +439,10 @@ impl QuasiStatic {
             prescribed: [None; 3],
             cone_table,
             cup_table,
-            cup_defect,
-            cone_defect,
-            roller_defect,
+            defects,
             defect_tables,
             cone_defect_tables,
-            defect_station,
-            cone_defect_station,
-            defect_turn: 0.0,
+            defect_turns: [0.0; 2],
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
             regularisation: 1e-9 * k_ref,
             geometry,
@@ -497,7 +481,7 @@ impl QuasiStatic {
     }
 
     fn prepare(&mut self, inputs: &Inputs, cage_angle: f64) {
-        if self.params.defect.ring != crate::defect::DefectRing::None {
+        if !self.defects.is_empty() {
             let z = self.geometry.z;
             for j in 0..z {
                 let (on_cup, on_cone) = self.place_defect(j, cage_angle + TAU * j as f64 / z as f64);
@@ -527,7 +511,7 @@ impl QuasiStatic {
             && inputs.zeta == 0.0
             && (p.outer_lobes == 0 || p.outer_waveform == 0.0)
             && p.roller_dd.iter().all(|d| *d == p.roller_dd[0])
-            && p.defect.ring == crate::defect::DefectRing::None;
+            && !p.has_defect();
         let cos_h = libm::cos(g.half_angle);
         let cos_o = libm::cos(g.cup_angle);
         for j in 0..z {
@@ -553,14 +537,15 @@ impl QuasiStatic {
     }
 
     /// Fill roller `j`'s defect tables for the roller at azimuth `psi`: each slice's crown
-    /// plus the drop of a cup defect at `psi`, of a cone defect at `psi` less the cone's turn,
-    /// and, on the defective roller, of its defect at the body angle of its cup contact (its
-    /// outward normal, 0) and of its cone contact (π), less its spin. Whether its cup and its
-    /// cone slices stand on a defect.
+    /// plus the drop of the cup's defects at `psi`, of the cone's at `psi` less the cone's
+    /// turn, and of the roller's own at the body angle of its cup contact (its outward normal,
+    /// 0) and of its cone contact (π), less its spin. Whether its cup and its cone slices stand
+    /// on a defect.
     fn place_defect(&mut self, j: usize, psi: f64) -> (bool, bool) {
+        use crate::defect::LocalDefects;
         let g = &self.geometry;
-        let turn = self.defect_turn;
-        let on_roller = self.roller_defect.filter(|d| d.roller == j);
+        let [cone_turn, spin] = self.defect_turns;
+        let defects = &self.defects;
         let fill = |table: &mut SliceTable, drop: &dyn Fn(usize) -> f64| {
             let mut on = false;
             for k in 0..g.slices {
@@ -572,41 +557,33 @@ impl QuasiStatic {
         };
         let mut on_cup = false;
         if !self.defect_tables.is_empty() {
-            let cup = self.cup_defect;
-            let station = &self.defect_station;
+            let (point, rho) = (&g.cup.point, &g.cup.raceway_radius);
             on_cup = fill(&mut self.defect_tables[j], &|k| {
-                cup.map_or(0.0, |d| d.drop(psi, g.cup.raceway_radius[k], station[k]).0)
-                    + on_roller.map_or(0.0, |d| d.drop(&d.on_cup, -turn, g.slice_s[k]).0)
+                LocalDefects::raceway_drop(&defects.cup, psi, point[k][0], rho[k]).0 + defects.roller_drop(j, true, -spin, g.slice_s[k]).0
             });
         }
         let mut on_cone = false;
         if !self.cone_defect_tables.is_empty() {
-            let cone = self.cone_defect;
-            let station = &self.cone_defect_station;
+            let (point, rho) = (&g.cone.point, &g.cone.raceway_radius);
             on_cone = fill(&mut self.cone_defect_tables[j], &|k| {
-                cone.map_or(0.0, |d| d.drop(psi - turn, g.cone.raceway_radius[k], station[k]).0)
-                    + on_roller.map_or(0.0, |d| d.drop(&d.on_cone, std::f64::consts::PI - turn, g.slice_s[k]).0)
+                LocalDefects::raceway_drop(&defects.cone, psi - cone_turn, point[k][0], rho[k]).0
+                    + defects.roller_drop(j, false, std::f64::consts::PI - spin, g.slice_s[k]).0
             });
         }
         (on_cup, on_cone)
     }
 
-    /// Set the turn (rad) of a cone or roller defect since t = 0: the cone's turn, or the
-    /// defective roller's spin relative to the cage ([`QuasiStatic::defect_turn_rate`],
-    /// integrated by the element). The next solve places the defect there.
-    pub fn set_defect_turn(&mut self, turn: f64) {
-        self.defect_turn = turn;
+    /// Set the turns (rad) since t = 0 of the cone and of the rollers' spin relative to the
+    /// cage ([`QuasiStatic::defect_turn_rates`], integrated by the element): the next solve
+    /// places the cone's and the rollers' defects there.
+    pub fn set_defect_turns(&mut self, turns: [f64; 2]) {
+        self.defect_turns = turns;
     }
 
-    /// The rate (rad/s) at which a turning defect turns at `inputs`: the cone's speed for a
-    /// cone defect, the rollers' epicyclic spin relative to the cage for a roller defect;
-    /// zero otherwise.
-    pub fn defect_turn_rate(&self, inputs: &Inputs) -> f64 {
-        match self.params.defect.ring {
-            crate::defect::DefectRing::Cone => inputs.speed,
-            crate::defect::DefectRing::Roller => self.spin_ratio * inputs.relative_speed(),
-            _ => 0.0,
-        }
+    /// The rates (rad/s) at which the cone and the rollers' spin relative to the cage turn at
+    /// `inputs`: the cone's speed and the rollers' epicyclic spin.
+    pub fn defect_turn_rates(&self, inputs: &Inputs) -> [f64; 2] {
+        [inputs.speed, self.spin_ratio * inputs.relative_speed()]
     }
 
     /// The cone's slice table of roller `j`: with the defect's drop where it stands on one.

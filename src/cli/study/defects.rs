@@ -1,7 +1,7 @@
 //! `trb study defects`: the vibration signature of a local defect. For each defect location
-//! the element models (today the cup), the dynamic model (fidelity 1) of the default bearing
-//! runs with a spall in the load zone, and the healthy bearing under the same load for
-//! reference; the sensor signal is sampled at 20 kHz. Writes `docs/defects.md` and
+//! (cup, cone, one roller), the dynamic model (fidelity 1) of the default bearing on a 10 kg
+//! housing runs with a spall where the load is, and the healthy bearing under the same load
+//! for reference; the accelerometer signal on the housing is sampled at 20 kHz. Writes `docs/defects.md` and
 //! `docs/figures/defects_*.svg`: the time signal, its spectrum and its envelope spectrum with
 //! the characteristic frequencies of the kinematic formulas marked, and a table of the
 //! envelope's peaks against those formulas.
@@ -21,15 +21,22 @@ use trb::variables as var;
 
 /// The default bearing.
 const PRESET: &str = "TRB130x230";
-/// Shaft speed (rpm), axial and radial load (N): the load zone is centred on +y (azimuth 0).
+/// Shaft speed (rpm), axial and radial load (N): the radial load centred on +y (azimuth 0),
+/// enough axial load that every roller stays loaded around the orbit (a preloaded tapered
+/// bearing), so that rollers roll without gross slip everywhere and a roller defect's strikes
+/// keep the rhythm of its spin (under Fa 20 kN and Fy 40 kN the rollers leaving the load zone
+/// spin down, docs/model.md, "Local defects").
 const SPEED_RPM: f64 = 3500.0;
-const FA: f64 = 20e3;
-const FY: f64 = 40e3;
+const FA: f64 = 60e3;
+const FY: f64 = 20e3;
+/// Mass of the cup and the housing moving with it (kg), on the default support
+/// (`housing.stiffness`, `housing.damping`): the accelerometer's mount.
+const HOUSING_MASS: f64 = 10.0;
 /// Communication step (s): the sampling interval of the signal, 20 kHz.
 const STEP: f64 = 50e-6;
 /// Simulated time (s) per run: the frequency resolution is its inverse.
 const DURATION: f64 = 0.2;
-const DURATION_QUICK: f64 = 0.1;
+const DURATION_QUICK: f64 = 0.05;
 /// The squared envelope is demodulated from this band of the signal (Hz): above the
 /// characteristic frequencies and their first harmonics, where the impacts ring the bearing.
 const BAND: (f64, f64) = (1000.0, 9000.0);
@@ -37,14 +44,14 @@ const BAND: (f64, f64) = (1000.0, 9000.0);
 const ENVELOPE_MAX: f64 = 1500.0;
 
 /// The signal the study analyses, with its name and unit, from the element's outputs: the one
-/// place that chooses it. Today the force on a rigid housing; an accelerometer's signal on the
-/// cup once the element has a housing mass.
+/// place that chooses it. An accelerometer on the housing, along the radial load.
 fn sensor(o: &Outputs) -> (f64, &'static str, &'static str) {
-    (o.housing_fy, "housing.Fy", "N")
+    (o.cup_ay, "cup.ay", "m/s²")
 }
 
-/// A spall in the middle of the load zone: 1.5 mm long, 10 mm wide, 0.1 mm deep, sharp edges
-/// (a roller of this bearing drops at most R − √(R² − (L/2)²) ≈ 23 µm into it).
+/// A spall where the load is at t = 0 (on the cup and the cone at azimuth 0, on roller 1
+/// facing the cup): 1.5 mm long, 10 mm wide, 0.1 mm deep, sharp edges (a roller of this
+/// bearing drops at most R_e − √(R_e² − (L/2)²), 24–30 µm, into it).
 const SPALL: [(u32, f64); 4] = [
     (var::DEFECT_ANGLE, 0.0),
     (var::DEFECT_LENGTH, 1.5e-3),
@@ -66,11 +73,13 @@ const fn location(key: &'static str, title: &'static str, ring: i32, lines: fn(&
     Location { key, title, ring, lines }
 }
 
-/// The defect locations the study runs, one line each. The cone and a roller join as
-/// `location("cone", "Cone (inner race)", 2, Kinematics::cone_lines)` and
-/// `location("roller", "Roller", 3, Kinematics::roller_lines)` once the element accepts
-/// `defect.ring` = 2 and 3.
-const LOCATIONS: &[Location] = &[location("cup", "Cup (outer race)", 1, Kinematics::cup_lines)];
+/// The defect locations the study runs, one line each (the roller defect on roller 1, the
+/// default `defect.roller`).
+const LOCATIONS: &[Location] = &[
+    location("cup", "Cup (outer race)", 1, Kinematics::cup_lines),
+    location("cone", "Cone (inner race)", 2, Kinematics::cone_lines),
+    location("roller", "Roller", 3, Kinematics::roller_lines),
+];
 
 /// A characteristic frequency (Hz) and its name.
 #[derive(Debug, Clone)]
@@ -206,7 +215,12 @@ fn run(ring: i32, duration: f64) -> Result<Run, CliError> {
     let mut s = Simulation::new(b);
     s.set_integer(var::FIDELITY, 1).map_err(|e| fail(e.to_string()))?;
     s.set_integer(var::DEFECT_RING, ring).map_err(|e| fail(e.to_string()))?;
-    let reals = [(var::SPEED, SPEED_RPM * PI / 30.0), (var::FX, FA), (var::FY, FY)];
+    let reals = [
+        (var::SPEED, SPEED_RPM * PI / 30.0),
+        (var::FX, FA),
+        (var::FY, FY),
+        (var::HOUSING_MASS, HOUSING_MASS),
+    ];
     for (vr, v) in reals.into_iter().chain(SPALL) {
         s.set_real(vr, v).map_err(|e| fail(e.to_string()))?;
     }
@@ -432,7 +446,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
     for (loc, (a, r)) in LOCATIONS.iter().zip(analysed.iter().zip(&runs).skip(1)) {
         let _ = writeln!(
             md,
-            "## {}\n\n`defect.ring` = {}: the spall (`defect.angle` = 0, in the middle of the load zone; 1.5 mm long, \
+            "## {}\n\n`defect.ring` = {}: the spall (`defect.angle` = 0, where the radial load is at t = 0; 1.5 mm long, \
              10 mm wide, 0.1 mm deep, sharp edges). Wall time {:.1} s against {:.1} s for the healthy bearing \
              ({duration} s simulated each).\n",
             loc.title, loc.ring, r.wall, healthy_run.wall
@@ -559,10 +573,12 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
     let doc = format!(
         "# The vibration signature of local defects\n\n\
          Written by `cargo run --release -- study defects{}` (src/cli/study/defects.rs); do not edit by hand. \
-         {PRESET} at {SPEED_RPM} rpm under Fa = {:.0} kN and Fy = {:.0} kN (the load zone centred on azimuth 0), \
+         {PRESET} at {SPEED_RPM} rpm under Fa = {:.0} kN and Fy = {:.0} kN (the radial load along azimuth 0; every roller loaded around the orbit), \
          the dynamic model (`fidelity` = 1) at the preset's settings, {duration} s per run sampled at {:.0} kHz \
-         (communication step {:.0} µs). The signal is the output `{}` (docs/variables.md). Each defect location \
-         the element models runs with a spall in the middle of the load zone, and the healthy bearing under the \
+         (communication step {:.0} µs), the cup on a {HOUSING_MASS} kg housing on the default support \
+         (`housing.mass`; docs/model.md, \"The housing\"). The signal is the output `{}` (docs/variables.md), \
+         what an accelerometer on the housing reads. Each defect location \
+         (cup, cone, roller 1) runs with a spall where the radial load is at t = 0, and the healthy bearing under the \
          same load as reference (docs/model.md, \"Local defects\").\n\n\
          The spectra are one-sided amplitude spectra of the whole run with a Hann window (a sine of amplitude A \
          reads A at its bin). The envelope is the squared envelope (Randall & Antoni 2011): the \
