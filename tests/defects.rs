@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::amplitude;
+use common::{amplitude, peak};
 use trb::bearing::Bearing;
 use trb::model::{ModelError, Outputs, Parameters};
 use trb::simulation::Simulation;
@@ -156,20 +156,6 @@ fn outer_race_frequency() -> f64 {
 fn squared_envelope(x: &[f64]) -> Vec<f64> {
     let mean = x.iter().sum::<f64>() / x.len() as f64;
     x.iter().map(|v| (v - mean) * (v - mean)).collect()
-}
-
-/// The spectrum's largest peak between `lo` and `hi` (Hz), refined by a parabola through the
-/// log magnitudes of the three bins around it, and its amplitude.
-fn peak(x: &[f64], dt: f64, lo: f64, hi: f64) -> (f64, f64) {
-    let df = 1.0 / (x.len() as f64 * dt);
-    let bins: Vec<f64> = (1..=(hi / df) as usize + 1)
-        .map(|k| k as f64 * df)
-        .filter(|f| *f >= lo - df)
-        .collect();
-    let a: Vec<f64> = bins.iter().map(|f| amplitude(x, dt, *f)).collect();
-    let k = (1..a.len() - 1).max_by(|i, j| a[*i].total_cmp(&a[*j])).unwrap();
-    let (l, m, r) = (a[k - 1].ln(), a[k].ln(), a[k + 1].ln());
-    (bins[k] + 0.5 * (l - r) / (l - 2.0 * m + r) * df, a[k])
 }
 
 /// The lag (s) between `lo` and `hi` where the autocorrelation of `x` about its mean is
@@ -336,20 +322,8 @@ fn kinematic() -> (f64, f64, f64, f64) {
 #[test]
 fn a_cone_defect_shows_the_inner_race_frequency_with_shaft_rate_sidebands() {
     let (fs, _, bpfi, _) = kinematic();
-    let dt = 5e-5;
-    let reals = [spall(), housing()].concat();
-    let r = record(&[(var::DEFECT_RING, 2)], &reals, dt, 2000);
-    let envelope = squared_envelope(&r.ay);
-    let (f, a) = peak(&envelope, dt, 0.9 * bpfi, 1.1 * bpfi);
-    let (lower, upper) = (amplitude(&envelope, dt, f - fs), amplitude(&envelope, dt, f + fs));
-    let between = amplitude(&envelope, dt, f - 0.5 * fs).max(amplitude(&envelope, dt, f + 0.5 * fs));
-    eprintln!(
-        "cone defect: envelope peak {f:.1} Hz (amplitude {a:.3e}) against BPFI {bpfi:.1} Hz; sidebands at -/+ {fs:.1} Hz {lower:.3e} / {upper:.3e}, between them {between:.3e}; energy residual {:.2e}; wall {:.1} s",
-        r.residual, r.wall
-    );
-    assert!((f / bpfi - 1.0).abs() < 0.01, "peak {f} Hz against {bpfi} Hz");
-    assert!(lower.max(upper) > 2.0 * between, "no shaft-rate sidebands");
-    assert!(r.residual.abs() < 0.01, "energy residual {}", r.residual);
+    let r = record(&[(var::DEFECT_RING, 2)], &[spall(), housing()].concat(), 5e-5, 2000);
+    envelope_line("cone defect", &r, 5e-5, ("BPFI", bpfi), ("shaft", fs));
 }
 
 /// A roller defect strikes the cup and the cone once per turn of the roller each: twice the
@@ -362,20 +336,26 @@ fn a_cone_defect_shows_the_inner_race_frequency_with_shaft_rate_sidebands() {
 #[test]
 fn a_roller_defect_shows_twice_the_spin_frequency_with_cage_rate_sidebands() {
     let (_, fc, _, two_bsf) = kinematic();
-    let dt = 1e-4;
     let reals = [spall(), housing(), vec![(var::FX, 60e3), (var::FY, 20e3)]].concat();
-    let r = record(&[(var::DEFECT_RING, 3), (var::DEFECT_ROLLER, 1)], &reals, dt, 2000);
+    let r = record(&[(var::DEFECT_RING, 3), (var::DEFECT_ROLLER, 1)], &reals, 1e-4, 2000);
+    envelope_line("roller defect", &r, 1e-4, ("2 BSF", two_bsf), ("cage", fc));
+}
+
+/// The envelope of the cup's acceleration in `r` (sampled every `dt`) peaks at the line
+/// (name, Hz) within 1 %, with sidebands at ± the modulating rate (name, Hz) at least twice
+/// the spectrum half-way between; the energy books close within 1 %.
+fn envelope_line(what: &str, r: &Record, dt: f64, (line, f_line): (&str, f64), (rate, f_rate): (&str, f64)) {
     let envelope = squared_envelope(&r.ay);
-    let (f, a) = peak(&envelope, dt, 0.9 * two_bsf, 1.1 * two_bsf);
-    let (lower, upper) = (amplitude(&envelope, dt, f - fc), amplitude(&envelope, dt, f + fc));
-    let between = amplitude(&envelope, dt, f - 0.5 * fc).max(amplitude(&envelope, dt, f + 0.5 * fc));
+    let (f, a) = peak(&envelope, dt, 0.9 * f_line, 1.1 * f_line);
+    let (lower, upper) = (amplitude(&envelope, dt, f - f_rate), amplitude(&envelope, dt, f + f_rate));
+    let between = amplitude(&envelope, dt, f - 0.5 * f_rate).max(amplitude(&envelope, dt, f + 0.5 * f_rate));
     eprintln!(
-        "roller defect: envelope peak {f:.1} Hz (amplitude {a:.3e}) against 2 BSF {two_bsf:.1} Hz; sidebands at -/+ {fc:.1} Hz {lower:.3e} / {upper:.3e}, between them {between:.3e}; energy residual {:.2e}; wall {:.1} s",
+        "{what}: envelope peak {f:.1} Hz (amplitude {a:.3e}) against {line} {f_line:.1} Hz; sidebands at -/+ {f_rate:.1} Hz {lower:.3e} / {upper:.3e}, between them {between:.3e}; energy residual {:.2e}; wall {:.1} s",
         r.residual, r.wall
     );
-    assert!((f / two_bsf - 1.0).abs() < 0.01, "peak {f} Hz against {two_bsf} Hz");
-    assert!(lower.max(upper) > 2.0 * between, "no cage-rate sidebands");
-    assert!(r.residual.abs() < 0.01, "energy residual {}", r.residual);
+    assert!((f / f_line - 1.0).abs() < 0.01, "{what}: peak {f} Hz against {f_line} Hz");
+    assert!(lower.max(upper) > 2.0 * between, "{what}: no {rate}-rate sidebands");
+    assert!(r.residual.abs() < 0.01, "{what}: energy residual {}", r.residual);
 }
 
 /// Fidelity 0, roller 1 at azimuth 0 (cage.angle0 = 0) at t = 0: a cone defect at angle 0

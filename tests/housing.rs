@@ -56,20 +56,8 @@ fn the_housing_force_rings_at_the_roller_pass_frequency_at_fidelity_1() {
     let mean = force.iter().sum::<f64>() / n as f64;
     let z = 17.0;
     let pass = z * cage / std::f64::consts::TAU;
-    // the spectrum of the fluctuation around the mean, 100 Hz to 2 kHz, its peak refined by a
-    // parabola through the log magnitudes of the three bins around it
-    let amplitude = |f: f64| common::amplitude(&force, dt, f);
-    let df = 1.0 / (n as f64 * dt);
-    let bins: Vec<f64> = (1..=(2000.0 / df) as usize)
-        .map(|k| k as f64 * df)
-        .filter(|f| *f >= 100.0)
-        .collect();
-    let spectrum: Vec<f64> = bins.iter().map(|f| amplitude(*f)).collect();
-    let k = (1..spectrum.len() - 1)
-        .max_by(|a, b| spectrum[*a].total_cmp(&spectrum[*b]))
-        .unwrap();
-    let (a, b, c) = (spectrum[k - 1].ln(), spectrum[k].ln(), spectrum[k + 1].ln());
-    let peak = bins[k] + 0.5 * (a - c) / (a - 2.0 * b + c) * df;
+    // the spectrum of the fluctuation around the mean, 100 Hz to 2 kHz, its peak refined
+    let (peak, _) = common::peak(&force, dt, 100.0, 2000.0);
     let ripple = force.iter().fold(0.0_f64, |m, v| m.max((v - mean).abs()));
     eprintln!("housing.Fy mean {mean:.1} N (Fy {fy} N), ripple ±{ripple:.1} N; peak at {peak:.1} Hz, roller passes {pass:.1} Hz");
     assert!((mean / fy - 1.0).abs() < 0.01, "mean {mean}");
@@ -124,7 +112,7 @@ fn the_cup_on_its_housing_rings_at_the_roller_passes_and_at_its_natural_frequenc
         s.do_step(k as f64 * dt, dt).unwrap();
         running.push(s.outputs().unwrap().cup_ay);
     }
-    let (f_pass, _) = peak(&running, dt, 0.8 * pass, 1.2 * pass);
+    let (f_pass, _) = common::peak(&running, dt, 0.8 * pass, 1.2 * pass);
     // the load step, then 40 ms at 50 kHz
     s.set_real(var::FY, 30e3).unwrap();
     let (t0, dt_ring) = (n as f64 * dt, 2e-5);
@@ -133,7 +121,7 @@ fn the_cup_on_its_housing_rings_at_the_roller_passes_and_at_its_natural_frequenc
         s.do_step(t0 + k as f64 * dt_ring, dt_ring).unwrap();
         ringing.push(s.outputs().unwrap().cup_ay);
     }
-    let (f_ring, _) = peak(&ringing, dt_ring, 200.0, 10e3);
+    let (f_ring, _) = common::peak(&ringing, dt_ring, 200.0, 10e3);
     let k_b = common::solved("TRB130x230", &[(var::SPEED, 3500.0 * RPM), (var::FX, 20e3), (var::FY, 30e3)]).stiffness[6].abs();
     let m_c = Parameters::from_bearing(&b).cone_mass;
     let m_rollers = 17.0 * g.roller_mass;
@@ -148,18 +136,4 @@ fn the_cup_on_its_housing_rings_at_the_roller_passes_and_at_its_natural_frequenc
         f_ring > 0.98 * heavy && f_ring < 1.02 * light,
         "{f_ring} Hz against {heavy} to {light} Hz"
     );
-}
-
-/// The spectrum's largest peak between `lo` and `hi` (Hz), refined by a parabola through the
-/// log magnitudes of the three bins around it, and its amplitude.
-fn peak(x: &[f64], dt: f64, lo: f64, hi: f64) -> (f64, f64) {
-    let df = 1.0 / (x.len() as f64 * dt);
-    let bins: Vec<f64> = (1..=(hi / df) as usize + 1)
-        .map(|k| k as f64 * df)
-        .filter(|f| *f >= lo - df)
-        .collect();
-    let a: Vec<f64> = bins.iter().map(|f| common::amplitude(x, dt, *f)).collect();
-    let k = (1..a.len() - 1).max_by(|i, j| a[*i].total_cmp(&a[*j])).unwrap();
-    let (l, m, r) = (a[k - 1].ln(), a[k].ln(), a[k + 1].ln());
-    (bins[k] + 0.5 * (l - r) / (l - 2.0 * m + r) * df, a[k])
 }

@@ -59,3 +59,19 @@ pub fn amplitude(x: &[f64], dt: f64, f: f64) -> f64 {
     }
     c.hypot(s)
 }
+
+/// The spectrum's largest peak between `lo` and `hi` (Hz) of `x` (sampled every `dt`),
+/// refined by a parabola through the log magnitudes of the three bins around it, and its
+/// amplitude.
+#[allow(dead_code)] // not every test file that includes `common` uses it
+pub fn peak(x: &[f64], dt: f64, lo: f64, hi: f64) -> (f64, f64) {
+    let df = 1.0 / (x.len() as f64 * dt);
+    let bins: Vec<f64> = (1..=(hi / df) as usize + 1)
+        .map(|k| k as f64 * df)
+        .filter(|f| *f >= lo - df)
+        .collect();
+    let a: Vec<f64> = bins.iter().map(|f| amplitude(x, dt, *f)).collect();
+    let k = (1..a.len() - 1).max_by(|i, j| a[*i].total_cmp(&a[*j])).unwrap();
+    let (l, m, r) = (a[k - 1].ln(), a[k].ln(), a[k + 1].ln());
+    (bins[k] + 0.5 * (l - r) / (l - 2.0 * m + r) * df, a[k])
+}
