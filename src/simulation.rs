@@ -78,11 +78,11 @@ struct State {
     outputs: Outputs,
     time: f64,
     cage_angle: f64,
-    /// Fidelity 0: the turns since the start of the cone and of the rollers' spin, where
-    /// their defects are (rad; `QuasiStatic::set_defect_turns`). Fidelity 1 keeps them in its
-    /// state.
+    /// Fidelity 0: the turns since the start of the cone, of the rollers' spin and of the
+    /// cup, where their defects are (rad; `QuasiStatic::set_defect_turns`). Fidelity 1 keeps
+    /// them in its state.
     #[serde(default)]
-    defect_turns: [f64; 2],
+    defect_turns: [f64; 3],
     /// Inputs or parameters changed since the outputs were computed.
     dirty: bool,
     /// Warm start of the quasi-static solver (empty before the first solve).
@@ -217,7 +217,7 @@ impl Simulation {
                 outputs,
                 time: 0.0,
                 cage_angle,
-                defect_turns: [0.0; 2],
+                defect_turns: [0.0; 3],
                 dirty: true,
                 warm_start: Vec::new(),
                 report: SolveReport::default(),
@@ -264,7 +264,7 @@ impl Simulation {
     pub fn initialize(&mut self, start_time: f64) -> Result<SolveReport, ModelError> {
         self.state.time = start_time;
         self.state.cage_angle = self.state.params.cage_angle0;
-        self.state.defect_turns = [0.0; 2];
+        self.state.defect_turns = [0.0; 3];
         self.state.dirty = true;
         self.state.dynamic = None;
         self.model = None;

@@ -467,3 +467,28 @@ fn several_defects_at_once() {
     assert!((f_in / bpfi - 1.0).abs() < 0.01, "{f_in} against {bpfi}");
     assert!(r.residual.abs() < 0.01, "energy residual {}", r.residual);
 }
+
+/// A cup defect turns with the cup: with the cone held and the cup turning at 3500 rpm, the
+/// rollers pass a point of the cup at Z (f_cup − f_c) = Z f_cup r_i / (r_i + r_o), and the
+/// envelope of `cup.ay` peaks there within 1 % (a defect standing still would ring at the
+/// rollers' pass over a fixed point, Z f_c = Z f_cup r_o / (r_i + r_o), 26 % higher).
+#[test]
+fn a_cup_defect_turns_with_the_cup() {
+    let (fs, fc_cone, _, _) = kinematic();
+    // with the cup turning at the shaft rate of the other tests, the cage turns at f_s − f_c
+    let (f_cup, f_cage) = (fs, fs - fc_cone);
+    let expected = 17.0 * (f_cup - f_cage);
+    let fixed = 17.0 * f_cage;
+    let reals = [spall(), housing(), vec![(var::SPEED, 0.0), (var::CUP_SPEED, 3500.0 * RPM)]].concat();
+    let mut s = element(1, &[(var::DEFECT_RING, 1)], &reals);
+    let dt = 5e-5;
+    let mut ay = Vec::with_capacity(2000);
+    for k in 0..2000 {
+        s.do_step(k as f64 * dt, dt).unwrap();
+        ay.push(s.outputs().unwrap().cup_ay);
+    }
+    let envelope = squared_envelope(&ay);
+    let (f, _) = peak(&envelope, dt, 0.8 * expected, 1.1 * fixed);
+    eprintln!("turning cup: envelope peak {f:.1} Hz against {expected:.1} Hz turning with the cup ({fixed:.1} Hz standing still)");
+    assert!((f / expected - 1.0).abs() < 0.01, "{f} Hz against {expected} Hz");
+}

@@ -718,10 +718,10 @@ struct LineSum {
 
 /// The extra interference of the cup at contact point `q` (global frame) and its derivative
 /// along the azimuth: the clearance, the lobes ([Y22]) and, where `defect` says the roller is
-/// near it, the drop into the cup's local defect (`crate::defect`; the drop is normal to the
-/// raceway, the lobes radial).
+/// near it, the drop into the cup's local defects, turned with the cup by `turn` since t = 0
+/// (`crate::defect`; the drop is normal to the raceway, the lobes radial).
 #[inline]
-fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
+fn cup_gap(c: &Constants, q: &V3, defect: bool, turn: f64) -> (f64, f64) {
     let psi = libm::atan2(q[2], q[1]);
     let (mut gap, mut gap_psi) = if c.lobes > 0 {
         let nl = c.lobes as f64;
@@ -734,7 +734,7 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool) -> (f64, f64) {
     };
     if defect {
         let rho = (q[1] * q[1] + q[2] * q[2]).sqrt();
-        let (drop, drop_psi) = LocalDefects::raceway_drop(&c.defects.cup, psi, q[0], rho);
+        let (drop, drop_psi) = LocalDefects::raceway_drop(&c.defects.cup, psi - turn, q[0], rho);
         gap -= drop;
         gap_psi -= drop_psi;
     }
@@ -1127,8 +1127,9 @@ struct Frame {
     cup_pos: V3,
     cup_vel: V3,
     cup_orbit: V3,
-    /// The cone's turn since t = 0 with a cone defect (rad; `Layout::cone_turn`).
+    /// The cone's and the cup's turns since t = 0 with their defects (rad; `Layout`).
     turn: f64,
+    cup_turn: f64,
     /// The supply's starvation at the current speed.
     starved: Starved,
 }
@@ -1437,18 +1438,18 @@ fn evaluate_roller(
     let near_defect = !c.defects.cup.is_empty()
         && LocalDefects::near(
             &c.defects.cup,
-            libm::atan2(cup.pos[2], cup.pos[1]),
+            libm::atan2(cup.pos[2], cup.pos[1]) - f.cup_turn,
             (cup.pos[1] * cup.pos[1] + cup.pos[2] * cup.pos[2]).sqrt(),
         );
     let cup_sum = if let Some(body) = &on_roller {
         let body = body.in_frame(&cup, body.normal, true);
         race_slices(c, &cup, dd, cup_loads, |q: &V3| {
-            let (gap, gap_psi) = cup_gap(c, q, near_defect);
+            let (gap, gap_psi) = cup_gap(c, q, near_defect, f.cup_turn);
             let (drop, drop_psi) = body.gap(q);
             (gap + drop, gap_psi + drop_psi)
         })
     } else if c.lobes > 0 || near_defect {
-        race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect))
+        race_slices(c, &cup, dd, cup_loads, |q: &V3| cup_gap(c, q, near_defect, f.cup_turn))
     } else {
         let gap = -c.half_clearance * c.cos_o;
         #[cfg(target_arch = "x86_64")]
@@ -1674,6 +1675,7 @@ pub(crate) fn evaluate(
         cup_vel,
         cup_orbit: V3::x().cross(&cup_pos),
         turn: c.layout.cone_turn.map_or(0.0, |k| y[k]),
+        cup_turn: c.layout.cup_turn.map_or(0.0, |k| y[k]),
         starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
     };
     rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
@@ -1762,6 +1764,9 @@ pub(crate) fn evaluate(
             dy[h + 1] = cup_vel[2];
             dy[h + 2] = tot.cup_acceleration[1];
             dy[h + 3] = tot.cup_acceleration[2];
+        }
+        if let Some(k) = c.layout.cup_turn {
+            dy[k] = inputs.cup_speed;
         }
         if let Some(k) = c.layout.cone_turn {
             dy[k] = inputs.speed;

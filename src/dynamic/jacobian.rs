@@ -1,17 +1,19 @@
 //! Block-structured Jacobian of the dynamic model and the linear systems of implicit steps.
 //!
 //! Rollers do not touch one another: roller j's equations depend on its own 11 states and on
-//! the 12 global states (cone translations, cage), and the global equations on every roller.
+//! the global states (the cone's translations and the cage's, 12; the housing's and the local
+//! defects' turns where the model has them, `Layout`), and the global equations on every
+//! roller.
 //! The Jacobian is therefore block-arrowhead:
 //!
 //! ```text
 //!     | D_1           R_1 |        D_j: 11 x 11 (roller j on itself)
-//! J = |     ...       ... |        R_j: 11 x 12 (roller j on the globals)
-//!     |         D_Z   R_Z |        L_j: 12 x 11 (the globals on roller j)
-//!     | L_1 ... L_Z   G   |        G:   12 x 12
+//! J = |     ...       ... |        R_j: 11 x g (roller j on the g globals)
+//!     |         D_Z   R_Z |        L_j: g x 11 (the globals on roller j)
+//!     | L_1 ... L_Z   G   |        G:   g x g (g = 12 without a housing or defects)
 //! ```
 //!
-//! Finite differences need only 11 + 12 right-hand sides (+ 1 at the base point): perturbing
+//! Finite differences need only 11 + g right-hand sides (+ 1 at the base point): perturbing
 //! component i of every roller at once gives column i of every D_j, and of every L_j from each
 //! roller's share of the global equations (`Shares`, kept apart by the right-hand side); each
 //! global state is perturbed on its own. A kinematic cage (at the mean roller azimuth) couples
@@ -20,10 +22,11 @@
 //!
 //! The matrix of an implicit stage, alpha I - J, is factored by blocks: LU of each
 //! A_j = alpha I - D_j, V_j = A_j^-1 R_j, the Schur complement S = alpha I - G - sum L_j V_j
-//! (12 x 12) and its LU; a solve costs two block substitutions per roller and one 12 x 12 solve.
+//! (g x g) and its LU; a solve costs two block substitutions per roller and one g x g solve.
 
 /// States per roller and global states.
 pub const M: usize = super::PER_ROLLER;
+/// The base global states (cone and cage): g without a housing or turning defects.
 pub const NG: usize = super::ROLLERS;
 
 /// The Jacobian blocks (row-major).

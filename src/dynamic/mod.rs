@@ -7,6 +7,9 @@
 //! - cage: radial translations (y, z), rotation about the bearing axis, their rates (the
 //!   axial cage position is held by the roller ends); or, with `cage.dynamic` = false, a
 //!   kinematic cage centred on the axis at the mean orbit of the rollers.
+//! - the housing (`housing.mass` > 0, `crate::housing`): the cup's radial translations and
+//!   their velocities; the turns of local defects that turn (`crate::defect`): the cone's, and
+//!   each defective roller's spin angle (`Layout`).
 //! - each roller: centre of mass in cylindrical coordinates (axial x, radial offset dr from
 //!   the pitch radius, azimuth psi) with rates; attitude as tilt theta (rotation of the axis
 //!   in its axial plane, positive outwards) and skew phi (rotation about the in-plane normal
@@ -67,15 +70,17 @@ pub const PER_ROLLER: usize = 11;
 /// where the element needs them, so that a bearing without them integrates exactly the states
 /// (and the bits) it did before they were added:
 /// - the housing's u_y, u_z, u_y', u_z' (`housing.mass` > 0, `crate::housing`);
-/// - the turn of each defect that turns: the cone's turn (with a cone defect), and the spin
-///   angle of each roller that carries a defect, relative to its body frame; zero at t = 0.
+/// - the turns of the rings and rollers that carry defects: the cup's (with a cup defect; it
+///   turns at `cupSpeed`), the cone's (with a cone defect), and the spin angle of each roller
+///   that carries a defect, relative to its body frame; zero at t = 0.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Layout {
     /// Number of global states.
     pub globals: usize,
     /// First of the housing's four states.
     pub housing: Option<usize>,
-    /// The cone's turn.
+    /// The cup's turn (at `cupSpeed`) and the cone's.
+    pub cup_turn: Option<usize>,
     pub cone_turn: Option<usize>,
     /// Per roller that carries a defect (0-based, ascending): its spin angle's state.
     pub roller_spins: Vec<(usize, usize)>,
@@ -91,6 +96,7 @@ impl Layout {
             globals - n
         };
         let housing = p.housing.is_flexible().then(|| take(4));
+        let cup_turn = p.defects().any(|d| d.ring == DefectRing::Cup).then(|| take(1));
         let cone_turn = p.defects().any(|d| d.ring == DefectRing::Cone).then(|| take(1));
         let mut rollers: Vec<usize> = p
             .defects()
@@ -103,6 +109,7 @@ impl Layout {
         Layout {
             globals,
             housing,
+            cup_turn,
             cone_turn,
             roller_spins,
             z,
@@ -115,9 +122,12 @@ impl Layout {
         self.roller_spins.iter().find(|(r, _)| *r == j).map(|(_, k)| *k)
     }
 
-    /// Every defect's turn state: the cone's, then the rollers' spins.
+    /// Every defect's turn state: the cup's, the cone's, then the rollers' spins.
     pub fn turns(&self) -> impl Iterator<Item = usize> + '_ {
-        self.cone_turn.into_iter().chain(self.roller_spins.iter().map(|(_, k)| *k))
+        self.cup_turn
+            .into_iter()
+            .chain(self.cone_turn)
+            .chain(self.roller_spins.iter().map(|(_, k)| *k))
     }
 
     /// Offset of roller `j`'s states.
@@ -484,7 +494,7 @@ impl Dynamic {
 
     /// Whether the bearing runs steadily, seen from the cage, with `inputs` held: loads and
     /// bearing axisymmetric (no radial load or displacement, no misalignment, identical
-    /// rollers, round rings), rollers and cage moving (not `startFromRest`), a dynamic cage.
+    /// rollers, round rings, no local defect), rollers and cage moving (not `startFromRest`), a dynamic cage.
     /// Then every roller runs in the same state relative to its pocket, and that state is
     /// the one the model settles to; otherwise the running state is periodic in the orbit.
     pub fn runs_steadily(&self, inputs: &Inputs) -> bool {
@@ -497,6 +507,7 @@ impl Dynamic {
             && inputs.zeta == 0.0
             && identical_rollers(&self.p)
             && self.c.lobes == 0
+            && !self.p.has_defect()
             && self.p.cage_dynamic
             && !self.p.start_from_rest
     }

@@ -357,12 +357,12 @@ pub struct QuasiStatic {
     cup_table: SliceTable,
     /// The local defects (`crate::defect`) on the cup, the cone and rollers, and per roller the
     /// cup's and the cone's slice tables with the defects' drops added to the crown (filled
-    /// for the rollers on one, `prepare`); the turns since t = 0 of the cone and of the
-    /// rollers' spin (rad; `set_defect_turns`).
+    /// for the rollers on one, `prepare`); the turns since t = 0 of the cone, of the rollers'
+    /// spin and of the cup (rad; `set_defect_turns`).
     defects: crate::defect::LocalDefects,
     defect_tables: Vec<SliceTable>,
     cone_defect_tables: Vec<SliceTable>,
-    defect_turns: [f64; 2],
+    defect_turns: [f64; 3],
     /// This solve is axisymmetric: one roller is evaluated and replicated.
     axisymmetric: bool,
     /// The cone translations (x, y, z) this solve prescribes (`prepare`): all three in
@@ -442,7 +442,7 @@ impl QuasiStatic {
             defects,
             defect_tables,
             cone_defect_tables,
-            defect_turns: [0.0; 2],
+            defect_turns: [0.0; 3],
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
             regularisation: 1e-9 * k_ref,
             geometry,
@@ -544,7 +544,7 @@ impl QuasiStatic {
     fn place_defect(&mut self, j: usize, psi: f64) -> (bool, bool) {
         use crate::defect::LocalDefects;
         let g = &self.geometry;
-        let [cone_turn, spin] = self.defect_turns;
+        let [cone_turn, spin, cup_turn] = self.defect_turns;
         let defects = &self.defects;
         let fill = |table: &mut SliceTable, drop: &dyn Fn(usize) -> f64| {
             let mut on = false;
@@ -559,7 +559,8 @@ impl QuasiStatic {
         if !self.defect_tables.is_empty() {
             let (point, rho) = (&g.cup.point, &g.cup.raceway_radius);
             on_cup = fill(&mut self.defect_tables[j], &|k| {
-                LocalDefects::raceway_drop(&defects.cup, psi, point[k][0], rho[k]).0 + defects.roller_drop(j, true, -spin, g.slice_s[k]).0
+                LocalDefects::raceway_drop(&defects.cup, psi - cup_turn, point[k][0], rho[k]).0
+                    + defects.roller_drop(j, true, -spin, g.slice_s[k]).0
             });
         }
         let mut on_cone = false;
@@ -573,17 +574,17 @@ impl QuasiStatic {
         (on_cup, on_cone)
     }
 
-    /// Set the turns (rad) since t = 0 of the cone and of the rollers' spin relative to the
-    /// cage ([`QuasiStatic::defect_turn_rates`], integrated by the element): the next solve
-    /// places the cone's and the rollers' defects there.
-    pub fn set_defect_turns(&mut self, turns: [f64; 2]) {
+    /// Set the turns (rad) since t = 0 of the cone, of the rollers' spin relative to the cage
+    /// and of the cup ([`QuasiStatic::defect_turn_rates`], integrated by the element): the
+    /// next solve places the defects there.
+    pub fn set_defect_turns(&mut self, turns: [f64; 3]) {
         self.defect_turns = turns;
     }
 
-    /// The rates (rad/s) at which the cone and the rollers' spin relative to the cage turn at
-    /// `inputs`: the cone's speed and the rollers' epicyclic spin.
-    pub fn defect_turn_rates(&self, inputs: &Inputs) -> [f64; 2] {
-        [inputs.speed, self.spin_ratio * inputs.relative_speed()]
+    /// The rates (rad/s) at which the cone, the rollers' spin relative to the cage and the
+    /// cup turn at `inputs`: the cone's speed, the rollers' epicyclic spin, the cup's speed.
+    pub fn defect_turn_rates(&self, inputs: &Inputs) -> [f64; 3] {
+        [inputs.speed, self.spin_ratio * inputs.relative_speed(), inputs.cup_speed]
     }
 
     /// The cone's slice table of roller `j`: with the defect's drop where it stands on one.
