@@ -290,7 +290,6 @@ pub const FURTHER_DEFECTS: usize = 3;
 /// The FMU names of one defect's parameters.
 #[derive(Debug, Clone, Copy)]
 pub struct DefectNames {
-    pub ring: &'static str,
     pub roller: &'static str,
     pub angle: &'static str,
     pub length: &'static str,
@@ -301,7 +300,6 @@ pub struct DefectNames {
 macro_rules! names {
     ($p:literal) => {
         DefectNames {
-            ring: concat!($p, ".ring"),
             roller: concat!($p, ".roller"),
             angle: concat!($p, ".angle"),
             length: concat!($p, ".length"),
@@ -351,14 +349,7 @@ impl LocalDefects {
     /// derivative along that angle (m/rad): the deepest of the pits it lies in.
     #[inline]
     pub fn raceway_drop(on: &[RacewayDefect], psi: f64, x: f64, rho: f64) -> (f64, f64) {
-        on.iter().fold((0.0, 0.0), |deepest, d| {
-            let drop = d.drop(psi, rho, d.station(x, rho));
-            if drop.0 > deepest.0 {
-                drop
-            } else {
-                deepest
-            }
-        })
+        deepest(on.iter().map(|d| d.drop(psi, rho, d.station(x, rho))))
     }
 
     /// Whether a roller at angle `psi` of the ring's frame, `rho` from the axis, can touch one
@@ -378,14 +369,10 @@ impl LocalDefects {
     /// deepest of its pits there.
     #[inline]
     pub fn roller_drop(&self, j: usize, on_cup: bool, chi: f64, s: f64) -> (f64, f64) {
-        self.of_roller(j).fold((0.0, 0.0), |deepest, d| {
-            let drop = d.drop(if on_cup { &d.on_cup } else { &d.on_cone }, chi, s);
-            if drop.0 > deepest.0 {
-                drop
-            } else {
-                deepest
-            }
-        })
+        deepest(
+            self.of_roller(j)
+                .map(|d| d.drop(if on_cup { &d.on_cup } else { &d.on_cone }, chi, s)),
+        )
     }
 
     /// The rollers (0-based, ascending, each once) that carry a defect.
@@ -395,6 +382,12 @@ impl LocalDefects {
         js.dedup();
         js
     }
+}
+
+/// The deepest of `drops` (drop, its derivative); (0, 0) for none.
+#[inline]
+fn deepest(drops: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
+    drops.fold((0.0, 0.0), |deepest, drop| if drop.0 > deepest.0 { drop } else { deepest })
 }
 
 /// Check the defect parameters against the bearing: `raceway_length` (m) the rollers' contact

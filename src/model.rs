@@ -500,8 +500,8 @@ impl Parameters {
             );
         }
         let every = std::iter::once(&self.defect).chain(&self.further_defects);
+        let circumference = std::f64::consts::PI * b.pitch_diameter;
         for (p, names) in every.zip(&crate::defect::NAMES) {
-            let circumference = std::f64::consts::PI * b.pitch_diameter;
             if let Err((name, message)) = crate::defect::validate(p, names, b.roller_length, circumference, d, b.roller_count) {
                 return bad(name, message);
             }

@@ -215,6 +215,7 @@ impl Constants {
         // pure rolling (epicyclic) reference speeds: start values and tolerance scales
         let cage_ratio = ri / (ri + ro);
         let spin_ratio = -cage_ratio * ro / g.mean_radius;
+        let defects = LocalDefects::new(p.defects(), b.roller_mean_radius(), &g.cup, &g.cone);
         let cm = g.cm_offset;
         let cos_h = libm::cos(g.half_angle);
         let flange = g.flange.as_ref().map(|f| FlangeConst {
@@ -256,8 +257,8 @@ impl Constants {
             half_clearance: 0.5 * p.clearance,
             lobes: p.outer_lobes,
             waveform: p.outer_waveform,
-            defects: LocalDefects::new(p.defects(), b.roller_mean_radius(), &g.cup, &g.cone),
-            layout: Layout::new(p, g.z),
+            layout: Layout::new(p.housing.is_flexible(), &defects, g.z),
+            defects,
             housing: p.housing.is_flexible().then_some(p.housing),
             dd_half: p.roller_dd.iter().map(|d| 0.5 * d).collect(),
             damping: p.contact_damping,
@@ -741,6 +742,14 @@ fn cup_gap(c: &Constants, q: &V3, defect: bool, turn: f64) -> (f64, f64) {
     (gap, gap_psi)
 }
 
+/// Whether a roller whose centre is at `pos` (in a ring's frame, the ring turned by `turn`
+/// since t = 0) can touch one of the ring's defects `on`: the cheap test before the contact
+/// closure (no angle computed for a ring without defects).
+#[inline]
+fn near(on: &[crate::defect::RacewayDefect], pos: &V3, turn: f64) -> bool {
+    !on.is_empty() && LocalDefects::near(on, libm::atan2(pos[2], pos[1]) - turn, (pos[1] * pos[1] + pos[2] * pos[2]).sqrt())
+}
+
 /// The extra interference of the cone at contact point `q` (the cone's frame) from its local
 /// defects, turned by `turn` since t = 0, and its derivative along the azimuth.
 #[inline]
@@ -1128,7 +1137,7 @@ struct Frame {
     cup_vel: V3,
     cup_orbit: V3,
     /// The cone's and the cup's turns since t = 0 with their defects (rad; `Layout`).
-    turn: f64,
+    cone_turn: f64,
     cup_turn: f64,
     /// The supply's starvation at the current speed.
     starved: Starved,
@@ -1435,12 +1444,7 @@ fn evaluate_roller(
         }
         None => (None, None),
     };
-    let near_defect = !c.defects.cup.is_empty()
-        && LocalDefects::near(
-            &c.defects.cup,
-            libm::atan2(cup.pos[2], cup.pos[1]) - f.cup_turn,
-            (cup.pos[1] * cup.pos[1] + cup.pos[2] * cup.pos[2]).sqrt(),
-        );
+    let near_defect = near(&c.defects.cup, &cup.pos, f.cup_turn);
     let cup_sum = if let Some(body) = &on_roller {
         let body = body.in_frame(&cup, body.normal, true);
         race_slices(c, &cup, dd, cup_loads, |q: &V3| {
@@ -1475,17 +1479,16 @@ fn evaluate_roller(
         gap_max: 0.0,
         starved: f.starved,
     };
-    // a cone defect in the cone's material frame, turned by `f.turn` since t = 0
-    let near_cone_defect = !c.defects.cone.is_empty()
-        && LocalDefects::near(
-            &c.defects.cone,
-            libm::atan2(cone.pos[2], cone.pos[1]) - f.turn,
-            (cone.pos[1] * cone.pos[1] + cone.pos[2] * cone.pos[2]).sqrt(),
-        );
+    // a cone defect in the cone's material frame, turned by `f.cone_turn` since t = 0
+    let near_cone_defect = near(&c.defects.cone, &cone.pos, f.cone_turn);
     let cone_sum = if near_cone_defect || on_roller.is_some() {
         let body = on_roller.as_ref().map(|b| b.in_frame(&cone, f.rot_t * b.normal, false));
         race_slices(c, &cone, dd, cone_loads, |q: &V3| {
-            let (mut gap, mut gap_psi) = if near_cone_defect { cone_gap(c, q, f.turn) } else { (0.0, 0.0) };
+            let (mut gap, mut gap_psi) = if near_cone_defect {
+                cone_gap(c, q, f.cone_turn)
+            } else {
+                (0.0, 0.0)
+            };
             if let Some(body) = &body {
                 let (drop, drop_psi) = body.gap(q);
                 gap += drop;
@@ -1674,7 +1677,7 @@ pub(crate) fn evaluate(
         cup_pos,
         cup_vel,
         cup_orbit: V3::x().cross(&cup_pos),
-        turn: c.layout.cone_turn.map_or(0.0, |k| y[k]),
+        cone_turn: c.layout.cone_turn.map_or(0.0, |k| y[k]),
         cup_turn: c.layout.cup_turn.map_or(0.0, |k| y[k]),
         starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
     };
@@ -1701,12 +1704,9 @@ pub(crate) fn evaluate(
     let f_cage_rollers = tot.f_cage;
     if c.cage_dynamic {
         let land = &c.land;
-        // the cage relative to the cup, which carries the land
-        let (e, v) = if c.housing.is_some() {
-            (frame.cage_pos - cup_pos, frame.cage_vel - cup_vel)
-        } else {
-            (V3::new(0.0, y[CAGE], y[CAGE + 1]), V3::new(0.0, y[CAGE + 3], y[CAGE + 4]))
-        };
+        // the cage relative to the cup, which carries the land (a rigid housing's cup is at
+        // +0, which the differences leave exact)
+        let (e, v) = (frame.cage_pos - cup_pos, frame.cage_vel - cup_vel);
         let ecc = e.norm();
         let e_hat = if ecc > 0.0 { e / ecc } else { V3::new(0.0, 1.0, 0.0) };
         let e_perp = V3::x().cross(&e_hat);

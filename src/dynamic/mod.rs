@@ -8,8 +8,8 @@
 //!   axial cage position is held by the roller ends); or, with `cage.dynamic` = false, a
 //!   kinematic cage centred on the axis at the mean orbit of the rollers.
 //! - the housing (`housing.mass` > 0, `crate::housing`): the cup's radial translations and
-//!   their velocities; the turns of local defects that turn (`crate::defect`): the cone's, and
-//!   each defective roller's spin angle (`Layout`).
+//!   their velocities; the turns of what carries local defects (`crate::defect`): the cup's,
+//!   the cone's, and each defective roller's spin angle (`Layout`).
 //! - each roller: centre of mass in cylindrical coordinates (axial x, radial offset dr from
 //!   the pitch radius, azimuth psi) with rates; attitude as tilt theta (rotation of the axis
 //!   in its axial plane, positive outwards) and skew phi (rotation about the in-plane normal
@@ -88,24 +88,17 @@ pub(crate) struct Layout {
 }
 
 impl Layout {
-    pub fn new(p: &Parameters, z: usize) -> Layout {
-        use crate::defect::DefectRing;
+    /// For `z` rollers, a cup on its support where `housing`, and the local defects `defects`.
+    pub fn new(housing: bool, defects: &crate::defect::LocalDefects, z: usize) -> Layout {
         let mut globals = ROLLERS;
         let mut take = |n: usize| {
             globals += n;
             globals - n
         };
-        let housing = p.housing.is_flexible().then(|| take(4));
-        let cup_turn = p.defects().any(|d| d.ring == DefectRing::Cup).then(|| take(1));
-        let cone_turn = p.defects().any(|d| d.ring == DefectRing::Cone).then(|| take(1));
-        let mut rollers: Vec<usize> = p
-            .defects()
-            .filter(|d| d.ring == DefectRing::Roller)
-            .map(|d| d.roller.saturating_sub(1) as usize)
-            .collect();
-        rollers.sort_unstable();
-        rollers.dedup();
-        let roller_spins = rollers.into_iter().map(|j| (j, take(1))).collect();
+        let housing = housing.then(|| take(4));
+        let cup_turn = (!defects.cup.is_empty()).then(|| take(1));
+        let cone_turn = (!defects.cone.is_empty()).then(|| take(1));
+        let roller_spins = defects.defective_rollers().into_iter().map(|j| (j, take(1))).collect();
         Layout {
             globals,
             housing,
@@ -213,8 +206,8 @@ pub(crate) struct RollerRecord {
     pub p_cage: f64,
     /// A slice law was extrapolated beyond its table.
     pub extrapolated: bool,
-    /// The defective roller's spin relative to its body frame (rad/s; the rate of
-    /// `Layout::defect_turn`): zero for the other rollers, and without a roller defect.
+    /// The roller's spin relative to its body frame (rad/s; the rate of its state in
+    /// `Layout::roller_spins`), where it carries a defect; zero for the other rollers.
     pub defect_spin: f64,
 }
 
@@ -361,7 +354,7 @@ fn integrator(g: &Geometry, c: &contacts::Constants, params: &Parameters, speed:
     let n = c.layout.len();
     let (atol, rtol) = tolerances(g, c, params, speed, n);
     let implicit = || {
-        let scale = perturbation_scales(g, &atol, params);
+        let scale = perturbation_scales(g, &atol, params, &c.layout);
         let active = moving_globals(g, params, &c.layout);
         let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
         ig.orbit = Some(rosenbrock::Orbit {
@@ -534,7 +527,7 @@ impl Dynamic {
         let (atol, _) = tolerances(&self.g, &self.c, &self.p, inputs.relative_speed().abs().max(100.0), n);
         let tol = self.p.tolerance.max(MIN_TOLERANCE);
         let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
-        let perturbation = perturbation_scales(&self.g, &atol, &self.p);
+        let perturbation = perturbation_scales(&self.g, &atol, &self.p, &self.c.layout);
         let active = moving_globals(&self.g, &self.p, &self.c.layout);
         let mut solver = steady::SteadySolver::new(self.g.z, self.c.layout.globals);
         let (mut model, _) = self.model(inputs, None);
@@ -950,11 +943,10 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
 /// perturbed by 2e-12 rad and its Jacobian column be round-off: Rosenbrock-W from the steady
 /// [W25] state at tolerance 1e-5 would take 137 steps in 20 ms where one per 1 ms interval
 /// holds the tolerance (31 steps with the floor).
-fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters) -> Vec<f64> {
+fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters, layout: &Layout) -> Vec<f64> {
     let tol = p.tolerance.max(MIN_TOLERANCE);
     let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
     scale[CAGE + 2] = 1.0;
-    let layout = Layout::new(p, g.z);
     for a in layout.turns() {
         scale[a] = 1.0;
     }

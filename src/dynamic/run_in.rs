@@ -150,9 +150,8 @@ impl Dynamic {
     /// [`BALANCE_ITERATIONS`] iterations of four right-hand sides). A balance not found
     /// keeps the best state seen.
     fn balance_cone(&mut self, state: &mut DynamicState, inputs: &Inputs) {
-        let free: Vec<usize> = (0..3)
-            .filter(|&k| super::moving_globals(&self.g, &self.p, &self.c.layout)[k])
-            .collect();
+        let moving = super::moving_globals(&self.g, &self.p, &self.c.layout);
+        let free: Vec<usize> = (0..3).filter(|&k| moving[k]).collect();
         if free.is_empty() {
             return;
         }
