@@ -10,6 +10,7 @@ use super::{f, pct, Writer};
 use crate::cli::report::{self, table};
 use crate::cli::svg::{self, Mark, Series};
 use crate::cli::CliError;
+use rustfft::{num_complex::Complex, FftPlanner};
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -246,37 +247,17 @@ fn run(ring: i32, duration: f64, (fa, fy): (f64, f64)) -> Result<Run, CliError> 
     })
 }
 
-/// The discrete Fourier transform of the complex sequence (`re`, `im`) at the bins `bins`:
-/// X_k = Σ_n x_n e^{∓2πi kn/N} (the minus sign forward, the plus sign with `inverse`, which
-/// also divides by N). Direct summation over a table of the N roots of unity: N × bins
-/// products, a few milliseconds for the study's 4000 samples.
-fn dft(re: &[f64], im: &[f64], bins: std::ops::Range<usize>, inverse: bool) -> (Vec<f64>, Vec<f64>) {
-    let n = re.len();
-    let sign = if inverse { 1.0 } else { -1.0 };
-    let roots: Vec<(f64, f64)> = (0..n)
-        .map(|k| {
-            let a = TAU * k as f64 / n as f64;
-            (libm::cos(a), sign * libm::sin(a))
-        })
-        .collect();
-    let scale = if inverse { 1.0 / n as f64 } else { 1.0 };
-    let (mut out_re, mut out_im) = (Vec::with_capacity(bins.len()), Vec::with_capacity(bins.len()));
-    for k in bins {
-        let (mut sr, mut si) = (0.0, 0.0);
-        let mut j = 0;
-        for (xr, xi) in re.iter().zip(im) {
-            let (c, s) = roots[j];
-            sr += xr * c - xi * s;
-            si += xr * s + xi * c;
-            j += k;
-            if j >= n {
-                j %= n;
-            }
-        }
-        out_re.push(scale * sr);
-        out_im.push(scale * si);
+/// The discrete Fourier transform of `x` in place: X_k = Σ_n x_n e^{∓2πi kn/N}, the minus sign
+/// forward, the plus sign with `inverse` (which also divides by N), by the rustfft crate.
+fn fft(x: &mut [Complex<f64>], inverse: bool) {
+    let mut planner = FftPlanner::new();
+    if inverse {
+        planner.plan_fft_inverse(x.len()).process(x);
+        let scale = 1.0 / x.len() as f64;
+        x.iter_mut().for_each(|v| *v *= scale);
+    } else {
+        planner.plan_fft_forward(x.len()).process(x);
     }
-    (out_re, out_im)
 }
 
 /// The one-sided amplitude spectrum of `x` (sampled every `dt`) up to `f_max`, Hann window,
@@ -287,12 +268,12 @@ fn spectrum(x: &[f64], dt: f64, f_max: f64) -> Vec<(f64, f64)> {
     let mean = x.iter().sum::<f64>() / n as f64;
     let w: Vec<f64> = (0..n).map(|k| 0.5 - 0.5 * libm::cos(TAU * k as f64 / n as f64)).collect();
     let gain: f64 = w.iter().sum();
-    let re: Vec<f64> = x.iter().zip(&w).map(|(v, w)| (v - mean) * w).collect();
+    let mut z: Vec<Complex<f64>> = x.iter().zip(&w).map(|(v, w)| Complex::new((v - mean) * w, 0.0)).collect();
+    fft(&mut z, false);
     let df = 1.0 / (n as f64 * dt);
     let top = ((f_max / df) as usize).min(n / 2);
-    let (xr, xi) = dft(&re, &vec![0.0; n], 0..top + 1, false);
     (0..=top)
-        .map(|k| (k as f64 * df, 2.0 * libm::sqrt(xr[k] * xr[k] + xi[k] * xi[k]) / gain))
+        .map(|k| (k as f64 * df, 2.0 * libm::sqrt(z[k].norm_sqr()) / gain))
         .collect()
 }
 
@@ -302,19 +283,17 @@ fn spectrum(x: &[f64], dt: f64, f_max: f64) -> Vec<(f64, f64)> {
 fn squared_envelope(x: &[f64], dt: f64, band: (f64, f64)) -> Vec<f64> {
     let n = x.len();
     let mean = x.iter().sum::<f64>() / n as f64;
-    let re: Vec<f64> = x.iter().map(|v| v - mean).collect();
-    let (mut xr, mut xi) = dft(&re, &vec![0.0; n], 0..n, false);
+    let mut z: Vec<Complex<f64>> = x.iter().map(|v| Complex::new(v - mean, 0.0)).collect();
+    fft(&mut z, false);
     let df = 1.0 / (n as f64 * dt);
-    for k in 0..n {
+    for (k, v) in z.iter_mut().enumerate() {
         // the analytic signal keeps the positive frequencies in the band, doubled
         let f = k as f64 * df;
         let keep = k > 0 && k < n.div_ceil(2) && f >= band.0 && f <= band.1;
-        let g = if keep { 2.0 } else { 0.0 };
-        xr[k] *= g;
-        xi[k] *= g;
+        *v *= if keep { 2.0 } else { 0.0 };
     }
-    let (zr, zi) = dft(&xr, &xi, 0..n, true);
-    zr.iter().zip(&zi).map(|(a, b)| a * a + b * b).collect()
+    fft(&mut z, true);
+    z.iter().map(|v| v.norm_sqr()).collect()
 }
 
 /// A peak of `spectrum` (bins of spacing df from 0) near `f`, within `half` (Hz): the largest
