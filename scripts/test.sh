@@ -44,6 +44,15 @@ fail() {
     exit 1
 }
 
+# A full run leaves about 5.5 GB here (target/ 4 GB with the cross builds and the wine prefix,
+# .venv 1.1 GB). Say so up front rather than fail half-way in a linker with "No space left".
+NEED_KB=$((6 * 1024 * 1024))
+FREE_KB=$(df -Pk . | awk 'NR == 2 { print $4 }')
+if [ -n "$FREE_KB" ] && [ "$FREE_KB" -lt "$NEED_KB" ]; then
+    printf 'warning: %s MB free on this file system; a full test run needs about 6000 MB.\n' \
+        "$((FREE_KB / 1024))" >&2
+fi
+
 # --- 1. Python venv -----------------------------------------------------------------------
 find_python() {
     local candidate
