@@ -316,8 +316,8 @@ fn the_spall_size_reads_from_the_time_between_entry_and_strike() {
         exit.0 - entry
     };
     let (short, long) = (spacing(2e-3), spacing(3e-3));
-    for (length, dt) in [(2e-3, short), (3e-3, long)] {
-        let read = v * dt;
+    for (length, apart) in [(2e-3, short), (3e-3, long)] {
+        let read = v * apart;
         assert!((read / length - 1.0).abs() < 0.10, "a {length} m spall reads {read} m");
     }
     let grown = v * (long - short);

@@ -352,9 +352,9 @@ impl BlockSystem for Model<'_> {
 /// geometry `g` and constants `c`, its tolerance scales at reference speed `speed` (rad/s).
 fn integrator(g: &Geometry, c: &contacts::Constants, params: &Parameters, speed: f64) -> Integrator {
     let n = c.layout.len();
-    let (atol, rtol) = tolerances(g, c, params, speed, n);
+    let (atol, rtol) = tolerances(g, c, params, speed);
     let implicit = || {
-        let scale = perturbation_scales(g, &atol, params, &c.layout);
+        let scale = perturbation_scales(&atol, params, &c.layout);
         let active = moving_globals(g, params, &c.layout);
         let mut ig = RosenbrockW::new(g.z, atol.clone(), rtol.clone(), scale, active, params.max_step);
         ig.orbit = Some(rosenbrock::Orbit {
@@ -522,12 +522,11 @@ impl Dynamic {
     /// (`steady.rs`). Returns the Newton iterations and right-hand sides it took; on failure
     /// `state` is unchanged.
     pub fn settle(&mut self, state: &mut DynamicState, inputs: &Inputs) -> Result<(u32, u64), steady::NoSteadyState> {
-        let n = self.n_states();
         // scales at the running speed (the integrators' are set once, at the preset's speed)
-        let (atol, _) = tolerances(&self.g, &self.c, &self.p, inputs.relative_speed().abs().max(100.0), n);
+        let (atol, _) = tolerances(&self.g, &self.c, &self.p, inputs.relative_speed().abs().max(100.0));
         let tol = self.p.tolerance.max(MIN_TOLERANCE);
         let scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
-        let perturbation = perturbation_scales(&self.g, &atol, &self.p, &self.c.layout);
+        let perturbation = perturbation_scales(&atol, &self.p, &self.c.layout);
         let active = moving_globals(&self.g, &self.p, &self.c.layout);
         let mut solver = steady::SteadySolver::new(self.g.z, self.c.layout.globals);
         let (mut model, _) = self.model(inputs, None);
@@ -884,8 +883,9 @@ pub const OIL_CONDUCTIVITY: f64 = 0.13;
 /// Largest Couette temperature rise of the isothermal oil films the dynamic model accepts, K.
 pub const MAX_FILM_HEATING: f64 = 1000.0;
 
-fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: f64) -> (Vec<f64>, Vec<f64>) {
     let tol = p.tolerance.max(MIN_TOLERANCE);
+    let n = c.layout.len();
     let l_ref = 1e-5;
     let r_p = g.center[1];
     let wc_ref = c.cage_ratio.abs() * speed_ref;
@@ -943,14 +943,14 @@ fn tolerances(g: &Geometry, c: &contacts::Constants, p: &Parameters, speed_ref: 
 /// perturbed by 2e-12 rad and its Jacobian column be round-off: Rosenbrock-W from the steady
 /// [W25] state at tolerance 1e-5 would take 137 steps in 20 ms where one per 1 ms interval
 /// holds the tolerance (31 steps with the floor).
-fn perturbation_scales(g: &Geometry, atol: &[f64], p: &Parameters, layout: &Layout) -> Vec<f64> {
+fn perturbation_scales(atol: &[f64], p: &Parameters, layout: &Layout) -> Vec<f64> {
     let tol = p.tolerance.max(MIN_TOLERANCE);
     let mut scale: Vec<f64> = atol.iter().map(|a| a / tol).collect();
     scale[CAGE + 2] = 1.0;
     for a in layout.turns() {
         scale[a] = 1.0;
     }
-    for j in 0..g.z {
+    for j in 0..layout.z {
         scale[layout.roller(j) + 2] = 1.0;
     }
     scale

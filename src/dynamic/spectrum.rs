@@ -112,7 +112,7 @@ fn eigenvalues_by_group() {
     d.advance(&mut st, &inputs, settle).unwrap();
     let mean_step = settle / (st.counters.steps - steps0).max(1) as f64;
     let n = st.y.len();
-    let (atol, _) = tolerances(&d.g, &d.c, &d.p, inputs.speed.abs(), n);
+    let (atol, _) = tolerances(&d.g, &d.c, &d.p, inputs.speed.abs());
     // Jacobian of the scaled system s = y / atol: J_s = D^-1 J D
     let mut f1 = vec![0.0; n];
     let mut f2 = vec![0.0; n];

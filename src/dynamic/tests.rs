@@ -748,7 +748,7 @@ fn block_jacobian_matches_the_full_finite_difference_jacobian() {
     d.advance(&mut st, &i, 2e-4).unwrap();
     let n = st.y.len();
     let z = d.g.z;
-    let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0, n);
+    let (atol, _) = super::tolerances(&d.g, &d.c, &d.p, 366.0);
     let scale: Vec<f64> = atol.iter().map(|a| a / d.p.tolerance).collect();
     let mut jac = BlockJacobian::zeros(z, d.c.layout.globals);
     let mut model = super::Model {

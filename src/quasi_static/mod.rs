@@ -330,8 +330,8 @@ struct RollerSetup {
     gap_cone: f64,
     gap_cup: f64,
     /// The roller stands on a local defect with its cup (cone) slices: they take the crown
-    /// plus the defect's drop of `defect_tables[j]` (`cone_defect_tables[j]`).
-    on_defect: bool,
+    /// plus the defect's drop of `cup_defect_tables[j]` (`cone_defect_tables[j]`).
+    on_cup_defect: bool,
     on_cone_defect: bool,
 }
 
@@ -360,7 +360,7 @@ pub struct QuasiStatic {
     /// for the rollers on one, `prepare`); the turns since t = 0 of the cone, of the rollers'
     /// spin and of the cup (rad; `set_defect_turns`).
     defects: crate::defect::LocalDefects,
-    defect_tables: Vec<SliceTable>,
+    cup_defect_tables: Vec<SliceTable>,
     cone_defect_tables: Vec<SliceTable>,
     defect_turns: [f64; 3],
     /// This solve is axisymmetric: one roller is evaluated and replicated.
@@ -424,7 +424,7 @@ impl QuasiStatic {
         let defects = crate::defect::LocalDefects::new(params.defects(), bearing.roller_mean_radius(), &geometry.cup, &geometry.cone);
         let tables = |table: &SliceTable, on: bool| if on { vec![table.clone(); z] } else { Vec::new() };
         let on_rollers = !defects.rollers.is_empty();
-        let defect_tables = tables(&cup_table, !defects.cup.is_empty() || on_rollers);
+        let cup_defect_tables = tables(&cup_table, !defects.cup.is_empty() || on_rollers);
         let cone_defect_tables = tables(&cone_table, !defects.cone.is_empty() || on_rollers);
         let skew = params
             .skew_model
@@ -440,7 +440,7 @@ impl QuasiStatic {
             cone_table,
             cup_table,
             defects,
-            defect_tables,
+            cup_defect_tables,
             cone_defect_tables,
             defect_turns: [0.0; 3],
             max_step: 1e-3 * 2.0 * geometry.mean_radius,
@@ -481,13 +481,6 @@ impl QuasiStatic {
     }
 
     fn prepare(&mut self, inputs: &Inputs, cage_angle: f64) {
-        if !self.defects.is_empty() {
-            let z = self.geometry.z;
-            for j in 0..z {
-                let (on_cup, on_cone) = self.place_defect(j, cage_angle + TAU * j as f64 / z as f64);
-                (self.setup[j].on_defect, self.setup[j].on_cone_defect) = (on_cup, on_cone);
-            }
-        }
         let g = &self.geometry;
         let p = &self.params;
         let z = g.z;
@@ -523,16 +516,21 @@ impl QuasiStatic {
                 0.0
             };
             let dd = 0.5 * p.roller_dd[j] * cos_h;
-            let (on_defect, on_cone_defect) = (self.setup[j].on_defect, self.setup[j].on_cone_defect);
             self.setup[j] = RollerSetup {
                 cos_psi: c,
                 sin_psi: s,
                 gamma: inputs.zeta * c - inputs.xi * s,
                 gap_cone: dd,
                 gap_cup: dd - (0.5 * p.clearance + lobe) * cos_o,
-                on_defect,
-                on_cone_defect,
+                on_cup_defect: false,
+                on_cone_defect: false,
             };
+        }
+        if !self.defects.is_empty() {
+            for j in 0..z {
+                let (on_cup, on_cone) = self.place_defect(j, cage_angle + TAU * j as f64 / z as f64);
+                (self.setup[j].on_cup_defect, self.setup[j].on_cone_defect) = (on_cup, on_cone);
+            }
         }
     }
 
@@ -556,9 +554,9 @@ impl QuasiStatic {
             on
         };
         let mut on_cup = false;
-        if !self.defect_tables.is_empty() {
+        if !self.cup_defect_tables.is_empty() {
             let (point, rho) = (&g.cup.point, &g.cup.raceway_radius);
-            on_cup = fill(&mut self.defect_tables[j], &|k| {
+            on_cup = fill(&mut self.cup_defect_tables[j], &|k| {
                 LocalDefects::raceway_drop(&defects.cup, psi - cup_turn, point[k][0], rho[k]).0
                     + defects.roller_drop(j, true, -spin, g.slice_s[k]).0
             });
@@ -600,8 +598,8 @@ impl QuasiStatic {
     /// The cup's slice table of roller `j`: with the defect's drop where it stands on it.
     #[inline]
     fn cup_table_of(&self, j: usize) -> &SliceTable {
-        if self.setup[j].on_defect {
-            &self.defect_tables[j]
+        if self.setup[j].on_cup_defect {
+            &self.cup_defect_tables[j]
         } else {
             &self.cup_table
         }
