@@ -11,6 +11,9 @@ use std::fmt;
 pub enum Fidelity {
     QuasiStatic = 0,
     Dynamic = 1,
+    /// Skew, spin and cage speed in balance or integrated at the communication step
+    /// (`crate::quasi_dynamic`).
+    QuasiDynamic = 2,
 }
 
 /// Lubrication model.

@@ -16,6 +16,7 @@
 use crate::bearing::Bearing;
 use crate::dynamic::{Dynamic, DynamicState};
 use crate::model::{Fidelity, Inputs, LoadCausality, Lubrication, ModelError, Outputs, Parameters, Preload, SolveReport};
+use crate::quasi_dynamic::QuasiDynamic;
 use crate::quasi_static::{Linearisation, QuasiStatic};
 use crate::tribology::{Piezoviscosity, TractionLaw};
 use crate::variables::{self as var, Causality};
@@ -66,6 +67,13 @@ enum Model {
         dynamic: Box<Dynamic>,
         linear: Box<Linearisation>,
     },
+    /// The quasi-dynamic model solves its in-plane seat with its quasi-static sibling and
+    /// keeps its state in the dynamic model's layout.
+    QuasiDynamic {
+        qs: Box<QuasiStatic>,
+        qd: Box<QuasiDynamic>,
+        linear: Box<Linearisation>,
+    },
 }
 
 /// The serializable part of a simulation (everything but derived data).
@@ -88,7 +96,8 @@ struct State {
     /// Warm start of the quasi-static solver (empty before the first solve).
     warm_start: Vec<f64>,
     report: SolveReport,
-    /// State of the dynamic model (fidelity 1), once initialised.
+    /// State of the dynamic model (fidelity 1) or of the quasi-dynamic one (fidelity 2, in
+    /// the dynamic model's layout), once initialised.
     dynamic: Option<DynamicState>,
 }
 
@@ -283,7 +292,7 @@ impl Simulation {
         let start = (st.time, st.cage_angle, st.defect_turns, st.inputs, st.rates, st.dirty);
         // at fidelity 1 the range check's quasi-static solve moves the warm start (a solve
         // at fidelity 0 that fails leaves it as it was)
-        let dynamic = self.state.params.fidelity == Fidelity::Dynamic;
+        let dynamic = self.state.params.fidelity != Fidelity::QuasiStatic;
         if dynamic {
             self.warm_start_backup.clone_from(&self.state.warm_start);
         }
@@ -308,7 +317,7 @@ impl Simulation {
             end_inputs.validate(&self.bearing, &self.state.params)?;
         }
         self.ensure_model()?;
-        if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. })) {
+        if self.state.dynamic.is_none() && matches!(self.model, Some(Model::Dynamic { .. } | Model::QuasiDynamic { .. })) {
             self.solve_if_dirty()?;
         }
         if matches!(self.model, Some(Model::Dynamic { .. })) {
@@ -340,6 +349,16 @@ impl Simulation {
                     return Err(e);
                 }
                 st.cage_angle = wrap_angle(dynamic.cage_angle(ds));
+            }
+            Model::QuasiDynamic { qs, qd, .. } => {
+                // the seat at the step's end, where the cage has turned at its speed
+                // the inputs ramp at their rates over the step (held: the same throughout)
+                let ds = st.dynamic.as_mut().expect("quasi-dynamic state initialised");
+                let (start, rates) = (st.inputs, st.rates);
+                let inputs_at = |t: f64| if t >= h { end_inputs } else { start.ramped(&rates, t) };
+                let balance = qd.advance(qs, &mut st.warm_start, &mut self.range_outputs, ds, &inputs_at, h)?;
+                st.report.iterations = balance.iterations;
+                st.cage_angle = qd.cage_angle(ds);
             }
         }
         st.time = t + h;
@@ -401,7 +420,9 @@ impl Simulation {
         }
         let st = &mut self.state;
         match self.model.as_mut() {
-            Some(Model::QuasiStatic { linear: Some(linear), .. }) | Some(Model::Dynamic { linear, .. }) => {
+            Some(Model::QuasiStatic { linear: Some(linear), .. })
+            | Some(Model::Dynamic { linear, .. })
+            | Some(Model::QuasiDynamic { linear, .. }) => {
                 linearise(linear, &st.inputs, st.cage_angle, &mut st.outputs);
             }
             _ => {}
@@ -427,6 +448,7 @@ impl Simulation {
     pub fn kinetic_energy(&self) -> f64 {
         match (&self.model, &self.state.dynamic) {
             (Some(Model::Dynamic { dynamic, .. }), Some(st)) => dynamic.kinetic_energy(st),
+            (Some(Model::QuasiDynamic { qd, .. }), Some(st)) => qd.kinetic_energy(st),
             _ => 0.0,
         }
     }
@@ -468,6 +490,11 @@ impl Simulation {
                 Fidelity::Dynamic => Model::Dynamic {
                     qs,
                     dynamic: Box::new(Dynamic::new(&self.bearing, &p)?),
+                    linear: Box::new(Linearisation::new(&self.bearing, &p)?),
+                },
+                Fidelity::QuasiDynamic => Model::QuasiDynamic {
+                    qs,
+                    qd: Box::new(QuasiDynamic::new(Dynamic::new(&self.bearing, &p)?)),
                     linear: Box::new(Linearisation::new(&self.bearing, &p)?),
                 },
             });
@@ -544,9 +571,45 @@ impl Simulation {
                 self.stiffness_stale = true;
                 report
             }
+            Model::QuasiDynamic { qs, qd, .. } => {
+                let mut report = st.report;
+                if st.dynamic.is_none() {
+                    qs.set_defect_turns(st.defect_turns);
+                    report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
+                        Ok(report) => report,
+                        Err(e) => {
+                            st.outputs.copy_from(&self.backup);
+                            return Err(e);
+                        }
+                    };
+                    let mut start = qd.dynamic.initial_state(qs, &st.warm_start, &st.inputs, st.cage_angle, st.time);
+                    // in the steady running state at the initial inputs (every rate zero),
+                    // unless started from rest; where none is found, at the seat with the
+                    // epicyclic speeds
+                    if !st.params.start_from_rest && st.inputs.relative_speed() != 0.0 {
+                        let mut steady = start.clone();
+                        match qd.step(&mut steady, &st.warm_start, st.cage_angle, &st.inputs, f64::INFINITY) {
+                            Ok(balance) => {
+                                report.iterations = balance.iterations;
+                                start = steady;
+                            }
+                            Err(_) => report.steady_start_failed = true,
+                        }
+                    } else {
+                        qd.hold(&mut start, &st.warm_start, st.cage_angle);
+                    }
+                    st.dynamic = Some(start);
+                }
+                let ds = st.dynamic.as_ref().expect("quasi-dynamic state");
+                qd.write_outputs(ds, &st.inputs, &mut st.outputs);
+                st.outputs.film_ratio_raceway = qs.film_ratio_output(qd.dynamic.slice_loads(), &st.inputs);
+                st.outputs.solver_iterations = report.iterations as i32;
+                self.stiffness_stale = true;
+                report
+            }
         };
         let qs = match self.model.as_ref().expect("model built") {
-            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } => qs,
+            Model::QuasiStatic { qs, .. } | Model::Dynamic { qs, .. } | Model::QuasiDynamic { qs, .. } => qs,
         };
         st.outputs.oil_viscosity = qs.oil_viscosity();
         st.outputs.film_ratio_flange = qs.flange_film_ratio_output(&st.outputs.qf, &st.inputs);
@@ -899,7 +962,13 @@ impl Simulation {
         let p = &mut self.state.params;
         let old = p.clone();
         match row.vr {
-            var::FIDELITY => p.fidelity = if value == 0 { Fidelity::QuasiStatic } else { Fidelity::Dynamic },
+            var::FIDELITY => {
+                p.fidelity = match value {
+                    0 => Fidelity::QuasiStatic,
+                    1 => Fidelity::Dynamic,
+                    _ => Fidelity::QuasiDynamic,
+                }
+            }
             var::LUBRICATION => p.lubrication = if value == 0 { Lubrication::Ehl } else { Lubrication::Dry },
             var::PRELOAD => p.preload = if value == 0 { Preload::Force } else { Preload::Displacement },
             var::CAUSALITY => {

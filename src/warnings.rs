@@ -124,7 +124,7 @@ pub fn message(w: Warning, t: f64, bearing: &Bearing, out: &Outputs, inputs: &In
             inputs.relative_speed()
         ),
         Warning::SteadyStartFailed => format!(
-            "t = {t}: startSteady: no steady running state found (Newton on the dynamic equations did not converge); the dynamic model is run in at its initial inputs instead"
+            "t = {t}: startSteady: no steady running state found (Newton on the dynamic equations did not converge); the dynamic model is run in at its initial inputs instead (fidelity 1), or the quasi-dynamic model starts at the seat with the epicyclic speeds and settles over its first steps (fidelity 2)"
         ),
         Warning::RunInUnbalanced => format!(
             "t = {t}: startSteady: after running in for {} ms at the initial inputs, the shaft's input power and the contacts' dissipation still differ by more than {} %: the bearing starts before it runs steadily, and the first output samples carry the rest of its start-up transient",

@@ -109,19 +109,19 @@ pub(crate) struct Constants {
     gyroscopic: bool,
     centrifugal: bool,
     // cage
-    cage_dynamic: bool,
+    pub(crate) cage_dynamic: bool,
     pub(crate) m_cage: f64,
     pub(crate) j_cage: f64,
-    pocket_half: f64,
+    pub(crate) pocket_half: f64,
     k_pocket: f64,
     crit_gap: f64,
     mu_pocket: f64,
     reduced_mass: f64,
     /// The cage's guiding land as a short journal bearing.
-    land: ShortJournal,
+    pub(crate) land: ShortJournal,
     k_land: f64,
     m_cone: f64,
-    pitch_radius: f64,
+    pub(crate) pitch_radius: f64,
     axial: bool,
     /// Cone translations (x, y, z) the inputs prescribe: x in displacement preload, all three
     /// in displacement causality (the cone follows them; a bearing without axial stiffness
@@ -1116,7 +1116,7 @@ fn pocket_sums_lanes(c: &Constants, p: &PocketLine) -> Option<PocketSums> {
 }
 
 /// The cone's and cage's pose and motion, the same for every roller of one evaluation.
-struct Frame {
+pub(crate) struct Frame {
     /// Cone rotation (columns: the cone's axes), its transpose and the cone's axis.
     rot: nalgebra::Matrix3<f64>,
     rot_t: nalgebra::Matrix3<f64>,
@@ -1383,7 +1383,7 @@ fn pocket_sums(c: &Constants, p: &PocketLine) -> PocketSums {
 /// power) and, when given, its 11 derivatives in `dy` and its slice loads (cone, then cup) in
 /// `slice_loads`. It reads only `y`, so rollers may be evaluated in any order or at once.
 #[allow(clippy::too_many_arguments)]
-fn evaluate_roller(
+pub(crate) fn evaluate_roller(
     g: &Geometry,
     c: &Constants,
     inputs: &Inputs,
@@ -1623,19 +1623,9 @@ fn rollers(
     }
 }
 
-/// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
-/// per-roller `records`; return the totals.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn evaluate(
-    g: &Geometry,
-    c: &Constants,
-    inputs: &Inputs,
-    y: &[f64],
-    mut dy: Option<&mut [f64]>,
-    records: &mut [RollerRecord],
-    mut slice_loads: Option<&mut [f64]>,
-) -> Totals {
-    let mut tot = Totals::default();
+/// The cone's and cage's pose and motion at state `y` with `inputs`: what every roller of one
+/// evaluation shares.
+pub(crate) fn frame(g: &Geometry, c: &Constants, inputs: &Inputs, y: &[f64]) -> Frame {
     // cone pose: rotation R (columns: the cone's axes), origin, velocity, spin about R x
     let rot = super::cone_rotation(inputs.xi, inputs.zeta);
     let rot_t = rot.transpose();
@@ -1661,7 +1651,7 @@ pub(crate) fn evaluate(
         (cage_angle(g, c, y), cage_speed(g, c, y), V3::zeros(), V3::zeros())
     };
     let (cup_pos, cup_vel) = cup_motion(c, y);
-    let frame = Frame {
+    Frame {
         rot,
         rot_t,
         axis_c,
@@ -1680,7 +1670,65 @@ pub(crate) fn evaluate(
         cone_turn: c.layout.cone_turn.map_or(0.0, |k| y[k]),
         cup_turn: c.layout.cup_turn.map_or(0.0, |k| y[k]),
         starved: Starved::of(c.supply.starvation(inputs.relative_speed())),
-    };
+    }
+}
+
+/// The cage on its guiding land: the short-bearing film with spin, whirl and squeeze,
+/// evaluated at the critical gap at most; Hertz, damping and boundary friction below it. Adds
+/// the land's force and moment about the axis on the cage, and the power it dissipates, to
+/// `tot`.
+pub(crate) fn cage_land(c: &Constants, f: &Frame, inputs: &Inputs, tot: &mut Totals) {
+    let land = &c.land;
+    // the cage relative to the cup, which carries the land (a rigid housing's cup is at
+    // +0, which the differences leave exact)
+    let (e, v) = (f.cage_pos - f.cup_pos, f.cage_vel - f.cup_vel);
+    let ecc = e.norm();
+    let e_hat = if ecc > 0.0 { e / ecc } else { V3::new(0.0, 1.0, 0.0) };
+    let e_perp = V3::x().cross(&e_hat);
+    let v_r = v.dot(&e_hat);
+    let gap = land.clearance - ecc;
+    // The land turns with the cup: the film seen from the cup, where the cage spins at
+    // its speed relative to the cup and its centre whirls at the tangential speed less
+    // the cup's rotation (Reynolds' wedge term takes the sum of the surface speeds,
+    // (omega_cage + omega_cup) / 2 - whirl; the Couette drag their difference); forces,
+    // moment and dissipation are the same in either frame.
+    let land_rate = f.cage_rate - inputs.cup_speed;
+    let film = land.film(
+        ecc.min(land.clearance - c.crit_gap),
+        land_rate,
+        v_r,
+        v.dot(&e_perp) - inputs.cup_speed * ecc,
+    );
+    tot.f_cage += e_hat * film.radial + e_perp * film.tangential;
+    tot.m_cage += film.moment;
+    tot.p_cage += film.power;
+    if gap < c.crit_gap {
+        let c_land = 2.0 * (c.m_cage * c.k_land).sqrt() * 0.1;
+        let q_el = (c.crit_gap - gap) * c.k_land;
+        let q = (q_el + c_land * v_r).max(0.0);
+        tot.f_cage -= e_hat * q;
+        // damping (q - q_el) v_r and boundary friction against the cage's surface speed
+        tot.p_cage += ((q - q_el) * v_r).max(0.0);
+        tot.m_cage -= c.mu_pocket * q * land.radius * land_rate.signum();
+        tot.p_cage += c.mu_pocket * q * (land_rate * land.radius).abs();
+    }
+}
+
+/// Evaluate all contacts at state `y`; write the derivatives into `dy` when given; fill the
+/// per-roller `records`; return the totals.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn evaluate(
+    g: &Geometry,
+    c: &Constants,
+    inputs: &Inputs,
+    y: &[f64],
+    mut dy: Option<&mut [f64]>,
+    records: &mut [RollerRecord],
+    mut slice_loads: Option<&mut [f64]>,
+) -> Totals {
+    let mut tot = Totals::default();
+    let frame = frame(g, c, inputs, y);
+    let (cup_pos, cup_vel) = (frame.cup_pos, frame.cup_vel);
     rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
     // the rollers' shares, added in roller order (the same bits for any thread count)
     for rec in records.iter() {
@@ -1698,45 +1746,10 @@ pub(crate) fn evaluate(
         tot.extrapolated |= rec.extrapolated;
     }
 
-    // cage land (dynamic cage on the cup land): short-bearing film with spin, whirl and
-    // squeeze, evaluated at the critical gap at most; Hertz, damping and boundary friction
-    // below it
+    // cage land (dynamic cage on the cup land)
     let f_cage_rollers = tot.f_cage;
     if c.cage_dynamic {
-        let land = &c.land;
-        // the cage relative to the cup, which carries the land (a rigid housing's cup is at
-        // +0, which the differences leave exact)
-        let (e, v) = (frame.cage_pos - cup_pos, frame.cage_vel - cup_vel);
-        let ecc = e.norm();
-        let e_hat = if ecc > 0.0 { e / ecc } else { V3::new(0.0, 1.0, 0.0) };
-        let e_perp = V3::x().cross(&e_hat);
-        let v_r = v.dot(&e_hat);
-        let gap = land.clearance - ecc;
-        // The land turns with the cup: the film seen from the cup, where the cage spins at
-        // its speed relative to the cup and its centre whirls at the tangential speed less
-        // the cup's rotation (Reynolds' wedge term takes the sum of the surface speeds,
-        // (omega_cage + omega_cup) / 2 - whirl; the Couette drag their difference); forces,
-        // moment and dissipation are the same in either frame.
-        let land_rate = cage_rate - inputs.cup_speed;
-        let film = land.film(
-            ecc.min(land.clearance - c.crit_gap),
-            land_rate,
-            v_r,
-            v.dot(&e_perp) - inputs.cup_speed * ecc,
-        );
-        tot.f_cage += e_hat * film.radial + e_perp * film.tangential;
-        tot.m_cage += film.moment;
-        tot.p_cage += film.power;
-        if gap < c.crit_gap {
-            let c_land = 2.0 * (c.m_cage * c.k_land).sqrt() * 0.1;
-            let q_el = (c.crit_gap - gap) * c.k_land;
-            let q = (q_el + c_land * v_r).max(0.0);
-            tot.f_cage -= e_hat * q;
-            // damping (q - q_el) v_r and boundary friction against the cage's surface speed
-            tot.p_cage += ((q - q_el) * v_r).max(0.0);
-            tot.m_cage -= c.mu_pocket * q * land.radius * land_rate.signum();
-            tot.p_cage += c.mu_pocket * q * (land_rate * land.radius).abs();
-        }
+        cage_land(c, &frame, inputs, &mut tot);
         // the land's force on the cage comes from the cup
         tot.f_cup -= tot.f_cage - f_cage_rollers;
     }

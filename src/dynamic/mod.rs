@@ -33,7 +33,7 @@
 //! start-up transient is simulated unless `startFromRest` asks for it. Integration:
 //! `integrator.rs` (adaptive Dormand-Prince 5(4) honouring `tolerance`).
 
-mod contacts;
+pub(crate) mod contacts;
 pub mod integrator;
 pub mod jacobian;
 pub mod multistep;
@@ -57,8 +57,8 @@ use std::f64::consts::TAU;
 type V3 = Vector3<f64>;
 
 /// Offsets in the state vector.
-const CONE: usize = 0; // x y z vx vy vz
-const CAGE: usize = 6; // y z psi vy vz psi'
+pub(crate) const CONE: usize = 0; // x y z vx vy vz
+pub(crate) const CAGE: usize = 6; // y z psi vy vz psi'
 /// The base global states (cone and cage): the element's further global states follow them,
 /// then the rollers (`Layout`).
 const ROLLERS: usize = 12;
@@ -445,18 +445,15 @@ impl Dynamic {
         y[CONE + 2] = x[2];
         y[CAGE + 2] = cage_angle;
         y[CAGE + 5] = wc;
-        let ls = 0.5 * g.length;
         let axis0 = V3::new(g.axis[0], g.axis[1], 0.0); // (x, r, t) components
         for j in 0..z {
             let o = self.c.layout.roller(j);
-            let (a, rho, tilt) = (x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j] / ls);
-            let psi = cage_angle + TAU * j as f64 / z as f64;
-            // attitude: nominal axis tilted by theta in the axial plane
+            let (ax, dr, tilt) = self.in_plane_state(x, j);
             let beta = g.axis_angle - tilt;
             let axis = V3::new(libm::cos(beta), -libm::sin(beta), 0.0);
-            // the state point is the centre of mass, cm_offset along the axis from the centre
-            y[o] = g.center[0] + a + g.cm_offset * axis[0];
-            y[o + 1] = rho + g.cm_offset * axis[1];
+            let psi = cage_angle + TAU * j as f64 / z as f64;
+            y[o] = ax;
+            y[o + 1] = dr;
             y[o + 2] = psi;
             y[o + 5] = wc;
             y[o + 6] = tilt;
@@ -483,6 +480,24 @@ impl Dynamic {
             memory: Vec::new(),
             switch: switching::MethodSwitch::default(),
         }
+    }
+
+    /// Roller `j`'s axial place and radial offset of its centre of mass and its tilt, the
+    /// states `x`, `dr` and `tilt`, from a quasi-static solution `x` (cone dx, dy, dz; per
+    /// roller a, rho, theta L_s).
+    pub(crate) fn in_plane_state(&self, x: &[f64], j: usize) -> (f64, f64, f64) {
+        let g = &self.g;
+        let (a, rho, tilt) = (x[3 + 3 * j], x[4 + 3 * j], x[5 + 3 * j] / (0.5 * g.length));
+        // attitude: nominal axis tilted by theta in the axial plane; the state point is the
+        // centre of mass, cm_offset along the axis from the centre
+        let beta = g.axis_angle - tilt;
+        let axis = V3::new(libm::cos(beta), -libm::sin(beta), 0.0);
+        (g.center[0] + a + g.cm_offset * axis[0], rho + g.cm_offset * axis[1], tilt)
+    }
+
+    /// The per-roller records of the last evaluation.
+    pub(crate) fn records(&self) -> &[RollerRecord] {
+        &self.eval.records
     }
 
     /// Whether the bearing runs steadily, seen from the cage, with `inputs` held: loads and
