@@ -586,7 +586,7 @@ impl Simulation {
                     // in the steady running state at the initial inputs (every rate zero),
                     // unless started from rest; where none is found, at the seat with the
                     // epicyclic speeds
-                    if !st.params.start_from_rest && st.inputs.relative_speed() != 0.0 {
+                    if st.params.start_steady && !st.params.start_from_rest && st.inputs.relative_speed() != 0.0 {
                         let mut steady = start.clone();
                         match qd.step(&mut steady, &st.warm_start, st.cage_angle, &st.inputs, f64::INFINITY) {
                             Ok(balance) => {

@@ -773,7 +773,7 @@ fn unknown_value_references_are_named() {
     // Out-of-range enumeration before initialization.
     let fresh = Fmu::new();
     assert_eq!(fresh.set_integer(var::FIDELITY, 7), FMI2_ERROR);
-    fresh.log.assert_logged("fidelity must be in [0, 1], got 7");
+    fresh.log.assert_logged("fidelity must be in [0, 2], got 7");
     assert_eq!(fresh.set_real(var::MU, f64::NAN), FMI2_ERROR);
     fresh.log.assert_logged("mu must be finite");
 }
