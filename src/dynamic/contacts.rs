@@ -1724,12 +1724,12 @@ pub(crate) fn evaluate(
     y: &[f64],
     mut dy: Option<&mut [f64]>,
     records: &mut [RollerRecord],
-    mut slice_loads: Option<&mut [f64]>,
+    slice_loads: Option<&mut [f64]>,
 ) -> Totals {
     let mut tot = Totals::default();
     let frame = frame(g, c, inputs, y);
     let (cup_pos, cup_vel) = (frame.cup_pos, frame.cup_vel);
-    rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads.as_deref_mut());
+    rollers(g, c, inputs, &frame, y, dy.as_deref_mut(), records, slice_loads);
     // the rollers' shares, added in roller order (the same bits for any thread count)
     for rec in records.iter() {
         tot.f_cone += rec.f_cone;

@@ -380,9 +380,7 @@ impl QuasiDynamic {
     /// at cage angle `cage_angle`; a housing's cup centred.
     fn seat(&self, x: &[f64], cage_angle: f64, y: &mut [f64]) {
         let d = &self.dynamic;
-        for k in 0..3 {
-            y[CONE + k] = x[k];
-        }
+        y[CONE..CONE + 3].copy_from_slice(&x[..3]);
         y[CAGE + 2] = cage_angle;
         if let Some(hs) = d.c.layout.housing {
             y[hs..hs + 4].iter_mut().for_each(|v| *v = 0.0);
@@ -573,22 +571,6 @@ impl QuasiDynamic {
                 break Err(f64::INFINITY);
             };
             balance.correction = correction;
-            if std::env::var_os("TRB_QD_DEBUG").is_some() {
-                let mut worst = [0.0f64; 6];
-                for k in 0..3 {
-                    worst[3 + k] = (self.cage_correction[k] / scales.limit_cage[k]).abs();
-                }
-                for du in &self.correction {
-                    for k in 0..3 {
-                        worst[k] = worst[k].max((du[k] / scales.limit[k]).abs());
-                    }
-                }
-                eprintln!(
-                    "h {h:.1e} it {} fresh {fresh} corr {correction:.3e} parts {:?}",
-                    balance.iterations,
-                    worst.map(|v| (v * 10.0).round() / 10.0)
-                );
-            }
             if !correction.is_finite() {
                 break Err(correction);
             }
