@@ -245,8 +245,9 @@ fn load_jumps_on_a_user_bearing_return_within_their_bounds() {
     unsafe { fmi2FreeFMUstate(fmu.c, &mut s) };
 }
 
-/// The same loads are refused with the same message at both fidelities (the dynamic model
-/// before it integrates), and both fidelities' refusals leave the instance usable.
+/// The same loads are refused with the same message at every fidelity (the dynamic model
+/// before it integrates, the quasi-dynamic one in its seat), and every fidelity's refusal
+/// leaves the instance usable.
 #[test]
 fn both_fidelities_refuse_the_same_loads_with_the_same_message() {
     let refusal = |fidelity: i32| -> String {
@@ -269,11 +270,12 @@ fn both_fidelities_refuse_the_same_loads_with_the_same_message() {
         s.do_step(1e-3, 1e-3).unwrap();
         e
     };
-    let (qs, dynamic) = (refusal(0), refusal(1));
-    eprintln!("fidelity 0: {qs}\nfidelity 1: {dynamic}");
+    let (qs, dynamic, quasi) = (refusal(0), refusal(1), refusal(2));
+    eprintln!("fidelity 0: {qs}\nfidelity 1: {dynamic}\nfidelity 2: {quasi}");
     // the same words; the numbers differ by the rollers' places (the dynamic cage's angle)
     let words = |m: &str| m.chars().filter(|c| !c.is_ascii_digit()).collect::<String>();
     assert_eq!(words(&qs), words(&dynamic));
+    assert_eq!(words(&qs), words(&quasi));
     assert!(qs.contains("the load is beyond the model's range: "), "{qs}");
 }
 

@@ -1289,7 +1289,7 @@ fn restore(fmu: &Fmu, bytes: &[c_char]) {
 #[test]
 fn serialized_state_replays_bit_for_bit_at_every_fidelity_and_integrator() {
     let h = 1e-4;
-    for (fidelity, integrator) in [(0, 0), (1, 0), (1, 1), (1, 2), (1, 3)] {
+    for (fidelity, integrator) in [(0, 0), (1, 0), (1, 1), (1, 2), (1, 3), (2, 3)] {
         let configure = |fmu: &Fmu| {
             assert_eq!(fmu.set_integer(var::FIDELITY, fidelity), FMI2_OK);
             assert_eq!(fmu.set_integer(var::INTEGRATOR, integrator), FMI2_OK);

@@ -18,18 +18,20 @@
 //!   `contacts::evaluate_roller`): raceway slices with traction, film, supply and mixed
 //!   laws, the rib's normal force through the end-sphere centre and its friction, the cage
 //!   pocket's films and walls, and the gyroscopic moment of spin and orbit (Euler's equations
-//!   of the axisymmetric roller with its attitude fixed in the azimuth frame);
+//!   of the axisymmetric roller, its attitude moving at the step's tilt and skew rates);
 //! - integrated by backward Euler over the communication step h: each roller's spin s about
-//!   its axis, I_a s' = M.a, its skew's and pocket place's rates, and the cage: its speed Ω
-//!   (every roller orbits with it), J_c Ω' = the pocket and land moments, and its centre on
-//!   the land, m_c c'' = the pocket and land forces (the cage floats on its land: held on the
-//!   axis, its pockets would press a skewed roller harder, 13 against 6 N on the [W25] bearing
-//!   deflected by 0.004°, and double its largest skew); the cage's angle follows,
-//!   psi_c += h Ω at the step's start speed. The seat's own rates (axial, radial, tilt) and the
-//!   free cone translations' are the backward differences of the seats at the step's ends. Backward Euler is L-stable: a loaded roller's spin relaxes to its traction
-//!   balance within about 15 µs (its eigenvalue, -2.3e3 1/s on the [W25] bearing, is the
-//!   unloaded roller's drag), so at a millisecond step the loaded rollers' spin is in balance
-//!   and a lightly loaded roller's skids as the traction lets it.
+//!   its axis, I_a s' = M.a, its pocket place and skew with their inertia, and the cage: its
+//!   speed Ω (every roller orbits with it), J_c Ω' = the pocket and land moments, and its
+//!   centre on the land, m_c c'' = the pocket and land forces (the cage floats on its land:
+//!   held on the axis, its pockets press a skewed roller harder, 13 against 6 N on the [W25]
+//!   bearing deflected by 0.004°, and the largest skew is 2.8e-4 against fidelity 1's
+//!   1.8e-4 rad); the cage's angle follows, psi_c += h Ω at the step's start speed. The seat's
+//!   own rates (axial, radial, tilt) and the free cone translations' are the backward
+//!   differences of the seats at the step's ends. Backward Euler is L-stable: a loaded
+//!   roller's spin relaxes to its traction balance within about 15 µs (the unloaded roller's
+//!   drag sets the slowest spin eigenvalue, -2.3e3 1/s on the [W25] bearing) and its skew mode
+//!   is damped within the step, so at a millisecond step the loaded rollers follow their
+//!   balance and a lightly loaded roller skids as the traction lets it.
 //!
 //! The unknowns of one step: per roller (its offset in the pocket delta, its skew phi, its spin
 //! s), and the cage's speed Ω and centre (c_y, c_z). The equations: per roller, the tangential
@@ -39,9 +41,9 @@
 //! its centre's motion. Newton's method with each roller's 3 × 3 block by finite differences of
 //! that roller's contacts alone and the couplings to the cage by differences of the whole
 //! right-hand side, the cage's three unknowns eliminated by their Schur complement (O(Z) per
-//! iteration). A step that does not converge within
-//! [`MAX_ITERATIONS`] is refused with its largest correction, and the element stays where the
-//! step began.
+//! iteration). A step that does not converge within [`MAX_ITERATIONS`] is taken in halves,
+//! down to 1/[`MAX_SUBSTEPS`] of the communication step; beyond that it is refused with its
+//! largest correction, and the element stays where the step began.
 //!
 //! Held: a housing's motion (the cup is rigid; housing forces are reported, the cup's
 //! acceleration is zero).
@@ -100,6 +102,13 @@ pub struct QuasiDynamic {
     /// at the step's start.
     d_cage: Matrix3<f64>,
     cage_start: [f64; CAGE_UNKNOWNS],
+    /// The rollers' unknowns being solved for and those at the last full Newton step's start.
+    unknowns: Vec<[f64; UNKNOWNS]>,
+    base: Vec<[f64; UNKNOWNS]>,
+    /// The state at a communication step's start and at a sub-step's, kept to return to
+    /// (storage reused from step to step).
+    scratch: Option<DynamicState>,
+    scratch_step: Option<DynamicState>,
     /// The full Newton step last taken (a damped one takes a share of it).
     step_taken: Vec<Vector3<f64>>,
     cage_step_taken: Vector3<f64>,
@@ -309,6 +318,10 @@ impl QuasiDynamic {
             records: vec![RollerRecord::default(); z],
             d_cage: Matrix3::identity(),
             cage_start: [0.0; CAGE_UNKNOWNS],
+            unknowns: Vec::with_capacity(z),
+            base: Vec::with_capacity(z),
+            scratch: None,
+            scratch_step: None,
             step_taken: vec![Vector3::zeros(); z],
             cage_step_taken: Vector3::zeros(),
             cage_correction: Vector3::zeros(),
@@ -463,7 +476,9 @@ impl QuasiDynamic {
         inputs_at: &dyn Fn(f64) -> Inputs,
         h: f64,
     ) -> Result<Balance, ModelError> {
-        let start = state.clone();
+        let mut start = self.scratch.take().unwrap_or_else(|| state.clone());
+        let mut before = self.scratch_step.take().unwrap_or_else(|| state.clone());
+        start.copy_from(state);
         let mut done = 0.0;
         let mut sub = h;
         let mut total = Balance::default();
@@ -471,7 +486,7 @@ impl QuasiDynamic {
             let hs = sub.min(h - done);
             let end = if done + hs >= h { h } else { done + hs };
             let inputs = inputs_at(end);
-            let before = state.clone();
+            before.copy_from(state);
             let cage_angle = (self.cage_angle(state) + hs * self.cage_speed(state)).rem_euclid(TAU);
             let turns = self.advance_defect_turns(state, &inputs_at(done), hs);
             qs.set_defect_turns(turns);
@@ -487,15 +502,17 @@ impl QuasiDynamic {
                     done = end;
                 }
                 Err(e) => {
-                    state.clone_from(&before);
+                    state.copy_from(&before);
                     if sub <= h / MAX_SUBSTEPS || !hs.is_finite() {
-                        state.clone_from(&start);
+                        state.copy_from(&start);
+                        (self.scratch, self.scratch_step) = (Some(start), Some(before));
                         return Err(e);
                     }
                     sub *= 0.5;
                 }
             }
         }
+        (self.scratch, self.scratch_step) = (Some(start), Some(before));
         Ok(total)
     }
 
@@ -525,7 +542,9 @@ impl QuasiDynamic {
     ) -> Result<Balance, ModelError> {
         let z = self.dynamic.g.z as u64;
         let mut y = std::mem::take(&mut self.y);
-        let (cage, mut u, mut g) = self.prepare(state, x, cage_angle, inputs, h, &mut y);
+        let mut u = std::mem::take(&mut self.unknowns);
+        let mut base_u = std::mem::take(&mut self.base);
+        let (cage, mut g) = self.prepare(state, x, cage_angle, inputs, h, &mut y, &mut u);
         let scales = self.scales(inputs.relative_speed());
         // the last step's Jacobian and its unknowns, which predict this step's
         let memory = Memory::new(self.dynamic.g.z);
@@ -535,7 +554,7 @@ impl QuasiDynamic {
         let mut last = f64::INFINITY;
         // the last full Newton step's start and the share of it taken (damped where the
         // corrections grow: Deuflhard's natural monotonicity test on the scaled corrections)
-        let mut base: Option<(Vec<[f64; UNKNOWNS]>, [f64; CAGE_UNKNOWNS])> = None;
+        let mut base: Option<[f64; CAGE_UNKNOWNS]> = None;
         let mut lambda = 1.0;
         let result = loop {
             let cage_residual = self.residuals(inputs, &cage, &u, &g, &mut y);
@@ -579,10 +598,10 @@ impl QuasiDynamic {
                 break Ok(());
             }
             if correction > last && lambda > MIN_DAMPING {
-                if let Some((u0, g0)) = &base {
+                if let Some(g0) = &base {
                     // back along the last step: half of what was taken
                     lambda *= 0.5;
-                    for (uj, (u0j, dj)) in u.iter_mut().zip(u0.iter().zip(&self.step_taken)) {
+                    for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
                         for k in 0..UNKNOWNS {
                             uj[k] = u0j[k] + lambda * dj[k];
                         }
@@ -593,17 +612,16 @@ impl QuasiDynamic {
                     continue;
                 }
             }
-            base = Some((u.clone(), g));
+            base_u.clone_from(&u);
+            base = Some(g);
             lambda = (2.0 * lambda).min(1.0);
-            self.take_step(lambda);
+            self.take_step();
             self.apply_correction(&mut u, &mut g, lambda);
             last = correction;
         };
         let outcome = match result {
             Ok(()) => {
-                let previous = std::mem::take(&mut state.memory);
                 state.y.copy_from_slice(&y);
-                state.memory = previous;
                 memory.write(&mut state.memory, self, h.is_finite().then_some(h));
                 if h.is_finite() {
                     state.t += h;
@@ -620,14 +638,15 @@ impl QuasiDynamic {
                 ),
             }),
         };
-        self.y = y;
+        (self.y, self.unknowns, self.base) = (y, u, base_u);
         outcome
     }
 
     /// Seat the rollers for the step into `y` (from `state`, the seat `x` at `cage_angle`),
-    /// with their seat rates over `h`; return the cage's step and the unknowns to start from
-    /// (those of `state`; with a kinematic cage, the epicyclic speed, the cage on the axis and
-    /// the rollers in their pockets' middle).
+    /// with their seat rates over `h`; write the rollers' unknowns to start from into `u` and
+    /// return the cage's step and unknowns (those of `state`; with a kinematic cage, the
+    /// epicyclic speed, the cage on the axis and the rollers in their pockets' middle).
+    #[allow(clippy::too_many_arguments)]
     fn prepare(
         &mut self,
         state: &DynamicState,
@@ -636,7 +655,8 @@ impl QuasiDynamic {
         inputs: &Inputs,
         h: f64,
         y: &mut [f64],
-    ) -> (CageStep, Vec<[f64; UNKNOWNS]>, [f64; CAGE_UNKNOWNS]) {
+        u: &mut Vec<[f64; UNKNOWNS]>,
+    ) -> (CageStep, [f64; CAGE_UNKNOWNS]) {
         let z = self.dynamic.g.z;
         let inv_h = if h.is_finite() { 1.0 / h } else { 0.0 };
         y.copy_from_slice(&state.y);
@@ -664,7 +684,7 @@ impl QuasiDynamic {
             free,
             held: [!free, !free || !h.is_finite(), !free || !h.is_finite()],
         };
-        let mut u = Vec::with_capacity(z);
+        u.clear();
         for j in 0..z {
             let o = c.layout.roller(j);
             let mut start = self.unknowns(&state.y, j);
@@ -683,7 +703,7 @@ impl QuasiDynamic {
             };
             u.push(start);
         }
-        (cage, u, g)
+        (cage, g)
     }
 
     /// Place the unknowns `u` and `g` in `y`, evaluate the contacts there (the dynamic
@@ -826,9 +846,9 @@ impl QuasiDynamic {
         Some(largest)
     }
 
-    /// Keep the last Newton correction as the step to take (its share `lambda` is applied).
-    fn take_step(&mut self, lambda: f64) {
-        let _ = lambda;
+    /// Keep the last Newton correction as the step taken (a damped step applies a share of
+    /// it).
+    fn take_step(&mut self) {
         self.step_taken.clone_from(&self.correction);
         self.cage_step_taken = self.cage_correction;
     }
@@ -857,25 +877,22 @@ impl QuasiDynamic {
     /// a defective roller's spin relative to its body), and return the turns the quasi-static
     /// seat places them at: the cone's, the first defective roller's, the cup's.
     pub fn advance_defect_turns(&mut self, state: &mut DynamicState, inputs: &Inputs, h: f64) -> [f64; 3] {
-        let layout = self.dynamic.c.layout.clone();
-        if let Some(k) = layout.cup_turn {
+        let (cup, cone) = (self.dynamic.c.layout.cup_turn, self.dynamic.c.layout.cone_turn);
+        if let Some(k) = cup {
             state.y[k] += h * inputs.cup_speed;
         }
-        if let Some(k) = layout.cone_turn {
+        if let Some(k) = cone {
             state.y[k] += h * inputs.speed;
         }
-        if !layout.roller_spins.is_empty() {
+        if !self.dynamic.c.layout.roller_spins.is_empty() {
             self.dynamic.rhs(inputs, &state.y, &mut self.dy);
-            for &(j, k) in &layout.roller_spins {
+            for &(j, k) in &self.dynamic.c.layout.roller_spins {
                 state.y[k] += h * self.dynamic.records()[j].defect_spin;
             }
         }
+        let first_roller = self.dynamic.c.layout.roller_spins.first().map(|(_, k)| *k);
         let turn = |k: Option<usize>| k.map_or(0.0, |k| state.y[k]);
-        [
-            turn(layout.cone_turn),
-            turn(layout.roller_spins.first().map(|(_, k)| *k)),
-            turn(layout.cup_turn),
-        ]
+        [turn(cone), turn(first_roller), turn(cup)]
     }
 
     /// Put `state` on the seat `x` at `cage_angle` without solving the balance (a start from
