@@ -137,22 +137,24 @@ struct Memory {
 }
 
 impl Memory {
-    /// Per roller: its unknowns, A, B and C; then the cage's unknowns and D; first a tag and
-    /// the step's length.
-    const TAG: f64 = 2.0;
-    const PER_ROLLER: usize = UNKNOWNS + 3 * 9;
+    /// First a tag and the lengths of the remembered step and of the one before it; per roller
+    /// its unknowns at the starts of those two steps, A, B and C; then the cage's unknowns at
+    /// the two starts and D.
+    const TAG: f64 = 3.0;
+    const PER_ROLLER: usize = 2 * UNKNOWNS + 3 * 9;
 
     fn new(z: usize) -> Memory {
         Memory { z }
     }
 
     fn len(&self) -> usize {
-        2 + self.z * Self::PER_ROLLER + CAGE_UNKNOWNS + 9
+        3 + self.z * Self::PER_ROLLER + 2 * CAGE_UNKNOWNS + 9
     }
 
     /// Read the Jacobian into `qd` and extrapolate the unknowns `u`, `g` (this step's start
     /// values, the end of the remembered step) over this step's length `h` (none: a steady
-    /// solve, no extrapolation); false where there is nothing to read.
+    /// solve, no extrapolation): quadratically through the two remembered starts where the
+    /// three steps have the same length, else linearly; false where there is nothing to read.
     fn read(&self, m: &[f64], qd: &mut QuasiDynamic, h: Option<f64>, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; CAGE_UNKNOWNS]) -> bool {
         if m.len() != self.len() || m[0] != Self::TAG {
             return false;
@@ -161,13 +163,22 @@ impl Memory {
             (Some(h), previous) if previous.is_finite() && previous > 0.0 => h / previous,
             _ => 0.0,
         };
-        let mut k = 2;
+        let quadratic = ratio == 1.0 && m[2] == m[1];
+        // the value at the next start from the values at this start (v), the last (v1) and the
+        // one before (v2)
+        let extrapolate = |v: f64, v1: f64, v2: f64| {
+            if quadratic && v2.is_finite() {
+                v + (v - v1) + ((v - v1) - (v1 - v2))
+            } else {
+                v + (v - v1) * ratio
+            }
+        };
+        let mut k = 3;
         for j in 0..self.z {
             for i in 0..UNKNOWNS {
-                // the remembered step started at m[k]; this one starts at u (its end)
-                u[j][i] += (u[j][i] - m[k + i]) * ratio;
+                u[j][i] = extrapolate(u[j][i], m[k + i], m[k + UNKNOWNS + i]);
             }
-            k += UNKNOWNS;
+            k += 2 * UNKNOWNS;
             qd.block[j].copy_from_slice(&m[k..k + 9]);
             qd.to_cage[j].copy_from_slice(&m[k + 9..k + 18]);
             qd.cage_rows[j].copy_from_slice(&m[k + 18..k + 27]);
@@ -175,27 +186,42 @@ impl Memory {
         }
         if qd.dynamic.c.cage_dynamic {
             for i in 0..CAGE_UNKNOWNS {
-                g[i] += (g[i] - m[k + i]) * ratio;
+                g[i] = extrapolate(g[i], m[k + i], m[k + CAGE_UNKNOWNS + i]);
             }
         }
-        k += CAGE_UNKNOWNS;
+        k += 2 * CAGE_UNKNOWNS;
         qd.d_cage.copy_from_slice(&m[k..k + 9]);
         true
     }
 
-    /// Write the step's start unknowns (from `qd`'s rates and cage start) and its Jacobian.
+    /// Write the step's start unknowns (from `qd`'s rates and cage start), the remembered
+    /// step's (from `m`, NaN where it holds none) and the step's Jacobian, in place.
     fn write(&self, m: &mut Vec<f64>, qd: &QuasiDynamic, h: Option<f64>) {
-        m.clear();
-        m.push(Self::TAG);
-        m.push(h.unwrap_or(f64::INFINITY));
+        let held = m.len() == self.len() && m[0] == Self::TAG;
+        let previous_h = if held { m[1] } else { f64::NAN };
+        m.resize(self.len(), f64::NAN);
+        m[0] = Self::TAG;
+        m[1] = h.unwrap_or(f64::INFINITY);
+        m[2] = previous_h;
+        let mut k = 3;
+        let keep = |m: &mut Vec<f64>, k: usize, start: &[f64]| {
+            let n = start.len();
+            for i in 0..n {
+                m[k + n + i] = if held { m[k + i] } else { f64::NAN };
+                m[k + i] = start[i];
+            }
+        };
         for j in 0..self.z {
-            m.extend_from_slice(&qd.rates[j].start);
-            m.extend_from_slice(qd.block[j].as_slice());
-            m.extend_from_slice(qd.to_cage[j].as_slice());
-            m.extend_from_slice(qd.cage_rows[j].as_slice());
+            keep(m, k, &qd.rates[j].start);
+            k += 2 * UNKNOWNS;
+            m[k..k + 9].copy_from_slice(qd.block[j].as_slice());
+            m[k + 9..k + 18].copy_from_slice(qd.to_cage[j].as_slice());
+            m[k + 18..k + 27].copy_from_slice(qd.cage_rows[j].as_slice());
+            k += 27;
         }
-        m.extend_from_slice(&qd.cage_start);
-        m.extend_from_slice(qd.d_cage.as_slice());
+        keep(m, k, &qd.cage_start);
+        k += 2 * CAGE_UNKNOWNS;
+        m[k..k + 9].copy_from_slice(qd.d_cage.as_slice());
     }
 }
 
