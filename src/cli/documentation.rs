@@ -98,10 +98,11 @@ fn trim(v: f64, digits: usize) -> String {
     }
 }
 
-/// Whether the dynamic model (fidelity 1) can be initialised in this build.
-fn dynamic_status(bearing: &Bearing) -> String {
+/// Whether the model of `fidelity` (1 dynamic, 2 quasi-dynamic) can be initialised in this
+/// build.
+fn dynamic_status(bearing: &Bearing, fidelity: i32) -> String {
     let mut sim = Simulation::new(bearing.clone());
-    if let Err(e) = sim.set_integer(variables::FIDELITY, 1) {
+    if let Err(e) = sim.set_integer(variables::FIDELITY, fidelity) {
         return format!("not available in this build ({})", access_message(&e));
     }
     match sim.initialize(0.0) {
@@ -252,7 +253,15 @@ pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) ->
         "<tr><td>1</td><td>dynamic</td><td>full roller (6 DOF each), cage and cone dynamics integrated in \
          time [W25, after Gupta 1984], started from the level-0 solution</td><td>roller tilt and skew, \
          moments, transients</td><td>{}</td></tr>",
-        dynamic_status(bearing)
+        dynamic_status(bearing, 1)
+    );
+    let _ = writeln!(
+        h,
+        "<tr><td>2</td><td>quasi-dynamic</td><td>each roller's seat, tilt, skew and place in its pocket in \
+         balance at every communication point under the level-1 contact laws; roller spin and the cage's \
+         speed and centre stepped by backward Euler over the communication step</td><td>roller skew, \
+         spin and cage slip at the communication step of a drivetrain or rotor model</td><td>{}</td></tr>",
+        dynamic_status(bearing, 2)
     );
     let _ = writeln!(h, "</table>");
     let _ = writeln!(
