@@ -167,7 +167,7 @@ def test_contract_names_exist_with_their_causality(models, preset):
     for name in CONTRACT_INPUTS:
         assert m.vars[name].variability == "continuous" and m.vars[name].type == "Real"
     # The modes are Enumerations (a drop-down in importers), accessed as Integers.
-    for name, n_items in [("fidelity", 2), ("lubrication", 2), ("preload", 2), ("traction", 2), ("oil.piezoviscosity", 2), ("integrator", 4)]:
+    for name, n_items in [("fidelity", 3), ("lubrication", 2), ("preload", 2), ("traction", 2), ("oil.piezoviscosity", 2), ("integrator", 4)]:
         v = m.vars[name]
         assert v.type == "Enumeration", f"{name} is {v.type}"
         assert v.declaredType in m.md.typeDefinitions, name
