@@ -388,6 +388,9 @@ pub struct QuasiStatic {
     /// Scratch for the unknowns of a solve and for one roller's slice loads (allocated once).
     x: Vec<f64>,
     local_scratch: Vec<f64>,
+    /// The solve under way is the seat of the quasi-dynamic model (`solve_seat`): its
+    /// outputs stop at the loads and the pressure the range check reads.
+    seat_only: bool,
 }
 
 impl QuasiStatic {
@@ -435,6 +438,7 @@ impl QuasiStatic {
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
             x: Vec::new(),
             local_scratch: Vec::with_capacity(2 * geometry.slices),
+            seat_only: false,
             axisymmetric: false,
             prescribed: [None; 3],
             cone_table,
@@ -1279,6 +1283,24 @@ impl QuasiStatic {
         }
     }
 
+    /// [`QuasiStatic::solve`] as the seat of the quasi-dynamic model: the same equilibrium
+    /// and warm start, with the outputs only as far as the loads, the cone's place and the
+    /// largest pressure (the range check's); the friction torque, the lives and the
+    /// stiffness, which the quasi-dynamic model takes from its own contacts or does not
+    /// need per step, are not computed.
+    pub fn solve_seat(
+        &mut self,
+        inputs: &Inputs,
+        cage_angle: f64,
+        warm: &mut Vec<f64>,
+        out: &mut Outputs,
+    ) -> Result<SolveReport, ModelError> {
+        self.seat_only = true;
+        let result = self.solve(inputs, cage_angle, warm, out);
+        self.seat_only = false;
+        result
+    }
+
     /// The in-plane equilibrium (3 unknowns per roller, no skew).
     fn solve_in_plane(
         &mut self,
@@ -1843,6 +1865,12 @@ impl QuasiStatic {
                 self.slice_loads(x, j, cone, cup);
             }
             self.slice_load_buffer = loads;
+        }
+        if self.seat_only {
+            let loads = &self.slice_load_buffer[..2 * self.geometry.slices * evaluated];
+            out.pressure_max = self.geometry.max_raceway_pressure(loads);
+            out.safety_s0 = self.rating.static_safety((fy * fy + fz * fz).sqrt(), out.reaction_fx);
+            return;
         }
         let torque = self.friction.evaluate(
             &self.geometry,
