@@ -113,6 +113,10 @@ pub struct QuasiDynamic {
     step_taken: Vec<Vector3<f64>>,
     cage_step_taken: Vector3<f64>,
     cage_correction: Vector3<f64>,
+    /// The unknowns and residuals of the last evaluation, from which the next one updates
+    /// the Jacobian (`secant_update`).
+    evaluated: Vec<([f64; UNKNOWNS], Vector3<f64>)>,
+    evaluated_cage: Option<([f64; CAGE_UNKNOWNS], Vector3<f64>)>,
 }
 
 /// The outcome of one step's balance.
@@ -351,6 +355,8 @@ impl QuasiDynamic {
             step_taken: vec![Vector3::zeros(); z],
             cage_step_taken: Vector3::zeros(),
             cage_correction: Vector3::zeros(),
+            evaluated: vec![([0.0; UNKNOWNS], Vector3::zeros()); z],
+            evaluated_cage: None,
         }
     }
 
@@ -517,7 +523,7 @@ impl QuasiDynamic {
             let turns = self.advance_defect_turns(state, &inputs_at(done), hs);
             qs.set_defect_turns(turns);
             let result = qs
-                .solve(&inputs, cage_angle, warm, seat_outputs)
+                .solve_seat(&inputs, cage_angle, warm, seat_outputs)
                 .and_then(|_| self.step(state, warm, cage_angle, &inputs, hs));
             match result {
                 Ok(balance) => {
@@ -582,9 +588,15 @@ impl QuasiDynamic {
         // corrections grow: Deuflhard's natural monotonicity test on the scaled corrections)
         let mut base: Option<[f64; CAGE_UNKNOWNS]> = None;
         let mut lambda = 1.0;
+        self.evaluated_cage = None;
         let result = loop {
             let cage_residual = self.residuals(inputs, &cage, &u, &g, &mut y);
             balance.roller_evaluations += z;
+            // the secant updates serve the time steps, whose first guess is close; the steady
+            // solve from the seat starts far off, where they mislead the chord iteration
+            if have_jacobian && h.is_finite() {
+                self.secant_update(&u, &g, &cage_residual, &cage, &scales);
+            }
             if balance.iterations >= MAX_ITERATIONS {
                 break Err(balance.correction);
             }
@@ -608,6 +620,7 @@ impl QuasiDynamic {
                 have_jacobian = true;
                 fresh = true;
                 balance.jacobians += 1;
+                self.secant_base(&u, &g, &cage_residual);
                 correction = self.newton_correction(&cage_residual, &cage, &scales);
             } else {
                 fresh = false;
@@ -870,6 +883,62 @@ impl QuasiDynamic {
             self.correction[j] = du;
         }
         Some(largest)
+    }
+
+    /// Broyden's update of the held Jacobian from the last evaluation to this one (unknowns
+    /// `u`, `g`, the residuals just evaluated): each roller's block A_j takes the change of
+    /// its residual that its own step and the cage's (through B_j) leave unexplained, the
+    /// cage's D the change of its residual that the rollers' steps (through C_j) and its own
+    /// leave; each along its step in the scaled unknowns (the convergence limits: the least
+    /// change of the block in that norm, Broyden's good update). The chord iteration
+    /// converges superlinearly with it at no evaluation of its own.
+    fn secant_update(
+        &mut self,
+        u: &[[f64; UNKNOWNS]],
+        g: &[f64; CAGE_UNKNOWNS],
+        cage_residual: &Vector3<f64>,
+        cage: &CageStep,
+        sc: &Scales,
+    ) {
+        let Some((g0, rc0)) = self.evaluated_cage else {
+            self.secant_base(u, g, cage_residual);
+            return;
+        };
+        let s_cage = Vector3::from_fn(|k, _| if cage.held[k] { 0.0 } else { g[k] - g0[k] });
+        let mut unexplained_cage = cage_residual - rc0 - self.d_cage * s_cage;
+        for (j, uj) in u.iter().enumerate() {
+            let (u0, r0) = &self.evaluated[j];
+            let s = Vector3::from_fn(|k, _| uj[k] - u0[k]);
+            unexplained_cage -= self.cage_rows[j] * s;
+            let w = Vector3::from_fn(|k, _| s[k] / (sc.limit[k] * sc.limit[k]));
+            let ws = w.dot(&s);
+            if ws > 0.0 && ws.is_finite() {
+                let y = self.residual[j] - r0 - self.to_cage[j] * s_cage;
+                let update = (y - self.block[j] * s) * w.transpose() / ws;
+                if update.iter().all(|v| v.is_finite()) {
+                    self.block[j] += update;
+                }
+            }
+        }
+        if cage.free {
+            let w = Vector3::from_fn(|k, _| s_cage[k] / (sc.limit_cage[k] * sc.limit_cage[k]));
+            let ws = w.dot(&s_cage);
+            if ws > 0.0 && ws.is_finite() {
+                let update = unexplained_cage * w.transpose() / ws;
+                if update.iter().all(|v| v.is_finite()) {
+                    self.d_cage += update;
+                }
+            }
+        }
+        self.secant_base(u, g, cage_residual);
+    }
+
+    /// Keep the unknowns and residuals just evaluated for the next secant update.
+    fn secant_base(&mut self, u: &[[f64; UNKNOWNS]], g: &[f64; CAGE_UNKNOWNS], cage_residual: &Vector3<f64>) {
+        for (e, (uj, rj)) in self.evaluated.iter_mut().zip(u.iter().zip(&self.residual)) {
+            *e = (*uj, *rj);
+        }
+        self.evaluated_cage = Some((*g, *cage_residual));
     }
 
     /// Keep the last Newton correction as the step taken (a damped step applies a share of
