@@ -9,6 +9,10 @@
 //! - 16 instances on parallel threads against one, and FMU states serialized in every state
 //!   and restored into other instances, all bitwise.
 //!
+//! The value sweeps, the parallel instances and the FMU states run at fidelity 0 and again at
+//! fidelity 2 (the quasi-dynamic model: its own state, balance and refusals), on the smallest
+//! preset where the fidelity-0 sweep takes two.
+//!
 //! tests/fmi_abi.rs covers the individual illegal calls with their messages; this file is
 //! the systematic sweep.
 #![cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
@@ -110,7 +114,22 @@ fn allowed(function: &str) -> &'static [S] {
 
 /// Serialized FMU state of a 32008 instance in state `s`.
 fn serialized_in(s: S) -> Vec<c_char> {
-    let f = fmu(PRESET);
+    serialized_at(s, 0)
+}
+
+/// An FMU instance of `preset` at `fidelity` (set before anything else).
+fn fmu_at(preset: &str, fidelity: i32) -> Fmu {
+    let f = fmu(preset);
+    if fidelity != 0 {
+        let vr = var::FIDELITY;
+        assert_eq!(unsafe { fmi2SetInteger(f.component(), &vr, 1, &fidelity) }, FMI2_OK);
+    }
+    f
+}
+
+/// Serialized FMU state of a 32008 instance at `fidelity` in state `s`.
+fn serialized_at(s: S, fidelity: i32) -> Vec<c_char> {
+    let f = fmu_at(PRESET, fidelity);
     let c = f.component();
     unsafe {
         if s != S::Instantiated {
@@ -387,18 +406,21 @@ const BAD_REALS: [f64; 9] = [
     5e-324,
 ];
 
-/// The outcome of setting one value and then initializing and stepping a Simulation.
-fn bad_value_on_simulation(preset: &str, vr: u32, name: &str, value: matrix::Value) -> Result<(), String> {
+/// The outcome of setting one value and then initializing and stepping a Simulation at
+/// `fidelity` (set first: a bad value of `fidelity` itself replaces it): `Ok(true)` where the
+/// step succeeded, `Ok(false)` where the value was refused clearly.
+fn bad_value_on_simulation(preset: &str, fidelity: i32, vr: u32, name: &str, value: matrix::Value) -> Result<bool, String> {
     let mut sim = Simulation::new(bearing(preset));
+    sim.set_integer(var::FIDELITY, fidelity).expect("a fidelity");
     let set = match value {
         matrix::Value::Real(x) => sim.set_real(vr, x),
         matrix::Value::Integer(i) => sim.set_integer(vr, i),
         matrix::Value::Boolean(b) => sim.set_boolean(vr, b),
     };
-    let clear = |m: String| -> Result<(), String> {
+    let clear = |m: String| -> Result<bool, String> {
         let short = name.split('[').next().unwrap();
         if m.contains(short) || matrix::clarity(&m).is_ok() {
-            Ok(())
+            Ok(false)
         } else {
             Err(format!("{name} = {value:?}: unclear message: {m}"))
         }
@@ -412,18 +434,29 @@ fn bad_value_on_simulation(preset: &str, vr: u32, name: &str, value: matrix::Val
         return Err(format!("{name} = {value:?}: non-finite outputs"));
     }
     match result {
-        Ok(_) => Ok(()),
+        Ok(_) => Ok(true),
         Err(e) => clear(e.to_string()),
     }
 }
 
 #[test]
 fn every_parameter_and_input_takes_bad_values_without_crash_or_nan() {
+    bad_values_on_simulation(&["32008", "CRB-TRILOBE"], 0);
+}
+
+#[test]
+fn every_parameter_and_input_takes_bad_values_at_fidelity_2_without_crash_or_nan() {
+    bad_values_on_simulation(&[PRESET], 2);
+}
+
+/// Every bad value of every parameter and input on `presets` at `fidelity`
+/// ([`bad_value_on_simulation`]).
+fn bad_values_on_simulation(presets: &[&'static str], fidelity: i32) {
     let rows = variables_json();
     let settable: Vec<&Row> = rows.iter().filter(|r| r.causality != "output").collect();
     assert!(settable.len() >= 25, "only {} parameters and inputs", settable.len());
     let mut work = Vec::new();
-    for preset in ["32008", "CRB-TRILOBE"] {
+    for &preset in presets {
         let z = bearing(preset).roller_count;
         for row in &settable {
             for (vr, name) in instances_of(row, z) {
@@ -451,11 +484,12 @@ fn every_parameter_and_input_takes_bad_values_without_crash_or_nan() {
     }
     let threads = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
     let results = matrix::parallel_map(&work, threads, |(preset, vr, name, v)| {
-        std::panic::catch_unwind(|| bad_value_on_simulation(preset, *vr, name, *v))
+        std::panic::catch_unwind(|| bad_value_on_simulation(preset, fidelity, *vr, name, *v))
             .unwrap_or_else(|_| Err(format!("{preset} {name} = {v:?}: panic")))
     });
     // F3 of docs/robustness.md (reported): one slice has no equilibrium on a tapered bearing.
     let known = |f: &String| f.starts_with("slices = Integer(1): unclear message: no quasi-static equilibrium");
+    let stepped = results.iter().filter(|r| matches!(r, Ok(true))).count();
     let failures: Vec<String> = results.into_iter().filter_map(|r| r.err()).filter(|f| !known(f)).collect();
     assert!(
         failures.is_empty(),
@@ -465,20 +499,37 @@ fn every_parameter_and_input_takes_bad_values_without_crash_or_nan() {
         failures.join("\n")
     );
     eprintln!(
-        "{} bad values in {} parameters and inputs of 2 presets: all handled",
+        "{} bad values in {} parameters and inputs of {} presets at fidelity {fidelity}: all handled, {stepped} of them taken and stepped",
         work.len(),
-        settable.len()
+        settable.len(),
+        presets.len()
     );
+    // the values a variable's range admits (-1, MIN_POSITIVE, the ends of the Integer ranges,
+    // Booleans) are taken and stepped: the sweep exercises the fidelity's model, not only the
+    // setters' checks
+    assert!(stepped * 10 > work.len(), "only {stepped} of {} values stepped", work.len());
 }
 
 #[test]
 fn bad_values_through_the_fmu_give_error_status_and_finite_outputs() {
+    bad_values_through_the_fmu(0);
+}
+
+#[test]
+fn bad_values_through_the_fmu_at_fidelity_2_give_error_status_and_finite_outputs() {
+    bad_values_through_the_fmu(2);
+}
+
+/// Every Real parameter and input of a 32008 instance at `fidelity` set to NaN, inf and
+/// -1e300, then initialized and stepped: statuses up to fmi2Error, finite outputs, and a
+/// message for every status that is not OK.
+fn bad_values_through_the_fmu(fidelity: i32) {
     let z = bearing(PRESET).roller_count;
     let (reals, _) = matrix::output_vrs(z);
     for row in variables_json().iter().filter(|r| r.causality != "output" && r.ty == "Real") {
         for (vr, name) in instances_of(row, z) {
             for bad in [f64::NAN, f64::INFINITY, -1e300] {
-                let f = fmu(PRESET);
+                let f = fmu_at(PRESET, fidelity);
                 let c = f.component();
                 unsafe {
                     let set = fmi2SetReal(c, &vr, 1, &bad);
@@ -756,9 +807,10 @@ fn resource_locations_that_do_not_exist_are_reported() {
 // 4. Concurrency and FMU states
 // ---------------------------------------------------------------------------------------
 
-/// A run with changing loads and speed through the C ABI: the output bits after each step.
-fn run_bits(preset: &str, steps: usize) -> Vec<u64> {
-    let f = fmu(preset);
+/// A run with changing loads and speed through the C ABI at `fidelity`: the output bits
+/// after each step.
+fn run_bits(preset: &str, fidelity: i32, steps: usize) -> Vec<u64> {
+    let f = fmu_at(preset, fidelity);
     let c = f.component();
     let z = bearing(preset).roller_count;
     let (reals, _) = matrix::output_vrs(z);
@@ -782,10 +834,22 @@ fn run_bits(preset: &str, steps: usize) -> Vec<u64> {
 
 #[test]
 fn sixteen_instances_on_parallel_threads_agree_bitwise_with_one() {
+    parallel_instances_agree(0);
+}
+
+#[test]
+fn sixteen_instances_at_fidelity_2_on_parallel_threads_agree_bitwise_with_one() {
+    parallel_instances_agree(2);
+}
+
+/// 16 instances of two presets at `fidelity` on parallel threads, each as the single one.
+fn parallel_instances_agree(fidelity: i32) {
     let presets = ["32008", "TRB130x230"];
-    let reference: Vec<Vec<u64>> = presets.iter().map(|p| run_bits(p, 12)).collect();
+    let reference: Vec<Vec<u64>> = presets.iter().map(|p| run_bits(p, fidelity, 12)).collect();
     let results: Vec<(usize, Vec<u64>)> = std::thread::scope(|s| {
-        let handles: Vec<_> = (0..16).map(|i| s.spawn(move || (i % 2, run_bits(presets[i % 2], 12)))).collect();
+        let handles: Vec<_> = (0..16)
+            .map(|i| s.spawn(move || (i % 2, run_bits(presets[i % 2], fidelity, 12))))
+            .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
     for (i, (p, bits)) in results.iter().enumerate() {
@@ -799,8 +863,20 @@ fn sixteen_instances_on_parallel_threads_agree_bitwise_with_one() {
 
 #[test]
 fn fmu_states_serialized_in_every_state_round_trip_bitwise_across_instances() {
+    states_round_trip(0);
+}
+
+#[test]
+fn fmu_states_at_fidelity_2_round_trip_bitwise_across_instances() {
+    states_round_trip(2);
+}
+
+/// FMU states of a 32008 instance at `fidelity` serialized in every state, restored into 16
+/// instances on parallel threads: each serializes it again to the same bytes, and stepping on
+/// from a restored StepComplete state gives the same output bits every time.
+fn states_round_trip(fidelity: i32) {
     for s in STATES {
-        let bytes = serialized_in(s);
+        let bytes = serialized_at(s, fidelity);
         // Restore into 16 instances on parallel threads; each serializes it again.
         let again: Vec<Vec<c_char>> = std::thread::scope(|scope| {
             let handles: Vec<_> = (0..16)
@@ -821,7 +897,7 @@ fn fmu_states_serialized_in_every_state_round_trip_bitwise_across_instances() {
         }
     }
     // Continuing from a restored StepComplete state gives the same outputs as the original.
-    let bytes = serialized_in(S::StepComplete);
+    let bytes = serialized_at(S::StepComplete, fidelity);
     let continue_from = |bytes: &[c_char]| {
         let f = fmu(PRESET);
         let c = f.component();
@@ -829,11 +905,30 @@ fn fmu_states_serialized_in_every_state_round_trip_bitwise_across_instances() {
         let mut v = vec![0.0; reals.len()];
         restore(c, bytes);
         unsafe {
+            // the state carries the fidelity into an instance of the default one
+            let mut f_read = -1;
+            assert_eq!(fmi2GetInteger(c, &var::FIDELITY, 1, &mut f_read), FMI2_OK);
+            assert_eq!(f_read, fidelity);
             assert_eq!(fmi2SetReal(c, &var::FY, 1, &3000.0), FMI2_OK);
             assert_eq!(fmi2DoStep(c, 0.0, 1e-3, 1), FMI2_OK);
             assert_eq!(fmi2GetReal(c, reals.as_ptr(), reals.len(), v.as_mut_ptr()), FMI2_OK);
         }
         v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>()
     };
-    assert_eq!(continue_from(&bytes), continue_from(&bytes));
+    let restored = continue_from(&bytes);
+    assert_eq!(restored, continue_from(&bytes));
+    // and the instance that was never serialized steps on to the same bits
+    let f = fmu_at(PRESET, fidelity);
+    let c = f.component();
+    let (reals, _) = matrix::output_vrs(bearing(PRESET).roller_count);
+    let mut v = vec![0.0; reals.len()];
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), FMI2_OK);
+        assert_eq!(fmi2EnterInitializationMode(c), FMI2_OK);
+        assert_eq!(fmi2ExitInitializationMode(c), FMI2_OK);
+        assert_eq!(fmi2SetReal(c, &var::FY, 1, &3000.0), FMI2_OK);
+        assert_eq!(fmi2DoStep(c, 0.0, 1e-3, 1), FMI2_OK);
+        assert_eq!(fmi2GetReal(c, reals.as_ptr(), reals.len(), v.as_mut_ptr()), FMI2_OK);
+    }
+    assert!(restored == v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>());
 }

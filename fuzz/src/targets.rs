@@ -207,15 +207,23 @@ fn callbacks(sink: &Sink) -> Fmi2CallbackFunctions {
     }
 }
 
-/// Interpret `data` as a sequence of FMI calls on one instance (at most 48). Every call must
-/// return a status in 0..=3 (fmi2Fatal means a caught panic), and every value read must be
-/// finite whatever the status.
+/// Interpret `data` as a sequence of FMI calls on one instance (at most 48), of the fidelity
+/// the first byte's bits 1-3 choose: 7 the dynamic model (1 in 8 inputs: its initialization
+/// costs most), other odd values the quasi-dynamic one (2), even values the quasi-static one
+/// (0); the calls may set another. Every call must return a status in 0..=3 (fmi2Fatal means
+/// a caught panic), and every value read must be finite whatever the status.
 pub fn fmi_calls(data: &[u8]) {
     let f = fixture();
     let sink = Box::<Sink>::default();
     let cb = callbacks(&sink);
     let mut r = Reader::new(data);
-    let logging_on = r.u8() & 1;
+    let first = r.u8();
+    let logging_on = first & 1;
+    let fidelity = match (first >> 1) & 7 {
+        7 => 1,
+        odd if odd & 1 == 1 => 2,
+        _ => 0,
+    };
     let c = unsafe {
         fmi2Instantiate(
             c"fuzz".as_ptr(),
@@ -228,6 +236,10 @@ pub fn fmi_calls(data: &[u8]) {
         )
     };
     assert!(!c.is_null(), "instantiation failed");
+    if fidelity != 0 {
+        let vr = var::FIDELITY;
+        assert_eq!(unsafe { fmi2SetInteger(c, &vr, 1, &fidelity) }, FMI2_OK, "fmi2SetInteger fidelity");
+    }
     let mut states: [Fmi2FmuState; 3] = [std::ptr::null_mut(); 3];
     let mut bytes: Vec<c_char> = Vec::new();
     let mut time = 0.0f64;
@@ -395,8 +407,9 @@ fn magnitude(r: &mut Reader, scale: f64, lo: f64, hi: f64) -> f64 {
     sign * scale * 10f64.powf(lo + (hi - lo) * x)
 }
 
-/// Interpret `data` as up to three input jumps on a fidelity-1 instance of the 32008 preset
-/// (its integrator and slice count from the input): loads from 0.01 to 100 times C_r in any
+/// Interpret `data` as up to three input jumps on a fidelity-1 or fidelity-2 instance of the
+/// 32008 preset (the first byte's bit 1 chooses fidelity 2; its integrator, used at fidelity
+/// 1, and its slice count from the input): loads from 0.01 to 100 times C_r in any
 /// direction, speeds up to twice the limiting speed either way, shaft deflections up to
 /// 0.3 deg, each held over a doStep of 0.1 or 1 ms. Every doStep must return within
 /// [`STEP_WALL_BOUND`] with OK, Warning or Discard; after a Discard the instance is still at
@@ -410,7 +423,9 @@ pub fn dynamic_jumps(data: &[u8]) {
     let sink = Box::<Sink>::default();
     let cb = callbacks(&sink);
     let mut r = Reader::new(data);
-    let logging_on = (r.u8() & 1) as c_int;
+    let first = r.u8();
+    let logging_on = (first & 1) as c_int;
+    let fidelity = 1 + ((first >> 1) & 1) as i32;
     let c = unsafe {
         fmi2Instantiate(
             c"jumps".as_ptr(),
@@ -431,7 +446,7 @@ pub fn dynamic_jumps(data: &[u8]) {
     };
     unsafe {
         let set_i = |vr: u32, v: i32| assert_eq!(fmi2SetInteger(c, &vr, 1, &v), FMI2_OK);
-        set_i(var::FIDELITY, 1);
+        set_i(var::FIDELITY, fidelity);
         set_i(var::INTEGRATOR, (r.u8() % 4) as i32);
         set_i(var::SLICES, [5, 10, 20][(r.u8() % 3) as usize]);
         assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), FMI2_OK);

@@ -54,7 +54,7 @@ pub enum Command {
     Bench(bench::BenchArgs),
     /// Bearing files: `show NAME` prints a preset as a bearing file to start from.
     Bearing(bearing::BearingArgs),
-    /// Hours of duty: a duty cycle at fidelity 0 and a long run at fidelity 1; update docs/soak.md.
+    /// Hours of duty: a duty cycle at fidelity 0 and long runs at fidelities 1 and 2; update docs/soak.md.
     Soak(soak::SoakArgs),
 }
 

@@ -29,6 +29,47 @@ pub fn replace_section(path: &Path, begin: &str, end: &str, title: &str, generat
     std::fs::write(path, text).map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Replace the section of `path` between `begin` and `end` (as [`replace_section`]) with
+/// `header` and, per fidelity in `fidelities`, its part between the markers
+/// `<!-- {prefix}:fidelity-N:begin -->` and `<!-- {prefix}:fidelity-N:end -->`: the new text
+/// of `parts` where the command ran that fidelity, else the part the document already has
+/// (so that a run of one fidelity keeps the others' results).
+pub fn replace_section_parts(
+    path: &Path,
+    (begin, end, title): (&str, &str, &str),
+    prefix: &str,
+    header: &str,
+    parts: &[(i32, String)],
+    fidelities: std::ops::RangeInclusive<i32>,
+) -> Result<(), CliError> {
+    let old = std::fs::read_to_string(path).unwrap_or_default();
+    let old_section = match (old.find(begin), old.find(end)) {
+        (Some(b), Some(e)) if e > b => &old[b..e],
+        _ => "",
+    };
+    let mut generated = header.trim_end().to_string();
+    for f in fidelities {
+        let (part_begin, part_end) = (
+            format!("<!-- {prefix}:fidelity-{f}:begin -->"),
+            format!("<!-- {prefix}:fidelity-{f}:end -->"),
+        );
+        let part = match parts.iter().find(|(g, _)| *g == f) {
+            Some((_, text)) => Some(format!("{part_begin}\n{}\n{part_end}", text.trim_end())),
+            None => match (old_section.find(&part_begin), old_section.find(&part_end)) {
+                (Some(b), Some(e)) if e > b => Some(old_section[b..e + part_end.len()].to_string()),
+                _ => None,
+            },
+        };
+        if let Some(part) = part {
+            if !generated.is_empty() {
+                generated.push_str("\n\n");
+            }
+            generated.push_str(&part);
+        }
+    }
+    replace_section(path, begin, end, title, &generated)
+}
+
 /// One line naming the machine: CPU model, logical cores, memory, operating system.
 pub fn machine() -> String {
     let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();

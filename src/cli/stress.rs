@@ -1,4 +1,4 @@
-//! `trb stress [--quick] [--fidelity 0,1] [--out docs/robustness.md]`: the numerical stress
+//! `trb stress [--quick] [--fidelity 0,1,2] [--out docs/robustness.md]`: the numerical stress
 //! matrix (see `stress/matrix.rs` for the cases and the checks), written into the
 //! generated section of `docs/robustness.md`. Exit code 1 when any case FAILED.
 //!
@@ -45,8 +45,8 @@ pub struct StressArgs {
 
 pub fn run(args: StressArgs) -> Result<(), CliError> {
     for f in &args.fidelity {
-        if !(0..=1).contains(f) {
-            return Err(CliError::invalid(format!("--fidelity: {f} is not a fidelity (0 or 1)")));
+        if !(0..=2).contains(f) {
+            return Err(CliError::invalid(format!("--fidelity: {f} is not a fidelity (0, 1 or 2)")));
         }
     }
     let started = Instant::now();
@@ -142,30 +142,7 @@ pub fn run(args: StressArgs) -> Result<(), CliError> {
 
 /// Replace the generated section of `path` (between the markers) with `header` and, per
 /// fidelity, the new part if it ran, else the part the document already has (so
-/// `--fidelity 1` keeps the fidelity-0 results and the other way round).
+/// `--fidelity 2` keeps the fidelity-0 and fidelity-1 results, and so on).
 fn write_section(path: &std::path::Path, header: &str, parts: &[(i32, String)]) -> Result<(), CliError> {
-    let old = std::fs::read_to_string(path).unwrap_or_default();
-    let old_section = match (old.find(BEGIN), old.find(END)) {
-        (Some(b), Some(e)) if e > b => &old[b..e],
-        _ => "",
-    };
-    let mut generated = header.trim_end().to_string();
-    for f in 0..=1 {
-        let (begin, end) = (
-            format!("<!-- stress:fidelity-{f}:begin -->"),
-            format!("<!-- stress:fidelity-{f}:end -->"),
-        );
-        let part = match parts.iter().find(|(g, _)| *g == f) {
-            Some((_, text)) => Some(format!("{begin}\n{}\n{end}", text.trim_end())),
-            None => match (old_section.find(&begin), old_section.find(&end)) {
-                (Some(b), Some(e)) if e > b => Some(old_section[b..e + end.len()].to_string()),
-                _ => None,
-            },
-        };
-        if let Some(part) = part {
-            generated.push_str("\n\n");
-            generated.push_str(&part);
-        }
-    }
-    super::report::replace_section(path, BEGIN, END, "Robustness", &generated)
+    super::report::replace_section_parts(path, (BEGIN, END, "Robustness"), "stress", header, parts, 0..=2)
 }

@@ -1,12 +1,14 @@
 //! Hours of duty in one element: a repeating duty cycle at fidelity 0 and a long run under
-//! combined load at fidelity 1, with the books a long run must keep (`trb soak`).
+//! combined load at fidelity 1 and at fidelity 2, with the books a long run must keep
+//! (`trb soak`).
 //!
 //! - Memory: the process's resident set (`/proc/self/statm`) after the first simulated minute
 //!   (or, for a shorter run, its first sixth) and at the end.
-//! - Energy: at fidelity 1 the shaft's work ∫ T ω dt against the contacts' dissipation ∫ P dt,
-//!   the change of the bodies' kinetic energy and the work of the loads on the cone's
-//!   translation (trapezoid over the communication points); the contacts' elastic energy is
-//!   bounded and left out. At fidelity 0 the element stores no energy and reports the power
+//! - Energy: at fidelities 1 and 2 the shaft's work ∫ T ω dt against the contacts'
+//!   dissipation ∫ P dt, the change of the bodies' kinetic energy and the work of the loads on
+//!   the cone's translation (trapezoid over the communication points, [`under_load`]); the
+//!   contacts' elastic energy is bounded and left out (fidelity 2 stores none: its seat is in
+//!   balance). At fidelity 0 the element stores no energy and reports the power
 //!   loss as the torque times the relative speed: the books close by construction and are not
 //!   counted as a check.
 //! - Repeatability: the fidelity-0 duty cycle repeats every [`CYCLE`] seconds, and every sampled
@@ -16,7 +18,8 @@
 //!   elsewhere when the inputs return: a film ratio then differs by up to 1e-3 between cycles.
 //! - Health: every step succeeds and every output is finite.
 //!
-//! Used by the `soak` command and by `tests/soak.rs` (a one-minute fidelity-0 run in CI).
+//! Used by the `soak` command and by `tests/soak.rs` (a one-minute fidelity-0 run and a
+//! one-second fidelity-2 run in CI).
 
 use std::time::Instant;
 use trb::bearing::Bearing;
@@ -40,7 +43,8 @@ pub struct Soak {
     /// Resident memory (bytes) after the first minute (or sixth) and at the end.
     pub rss_early: u64,
     pub rss_end: u64,
-    /// Fidelity 1: shaft work, dissipation, kinetic energy change, work of the loads (J).
+    /// Fidelities 1 and 2: shaft work, dissipation, kinetic energy change, work of the loads
+    /// (J).
     pub shaft_work: f64,
     pub dissipated: f64,
     pub kinetic_change: f64,
@@ -49,7 +53,8 @@ pub struct Soak {
     /// first cycle's, and how many points were compared.
     pub repeat_error: f64,
     pub repeat_points: usize,
-    /// Fidelity 1: mean friction torque over the second and the last simulated second (N m).
+    /// Fidelities 1 and 2: mean friction torque over the second and the last simulated second
+    /// (N m; the second's stays 0 in a run shorter than 2 s).
     pub torque_first: f64,
     pub torque_last: f64,
     /// The first failure: the time and the message.
@@ -222,13 +227,25 @@ pub fn fidelity_0(seconds: f64) -> Soak {
     r
 }
 
-/// `seconds` at fidelity 1 under combined load: the default bearing at 3500 rpm, Fa 30 kN,
-/// Fy 10 kN, in 1 ms steps.
+/// `seconds` at fidelity 1 under combined load ([`under_load`]).
 pub fn fidelity_1(seconds: f64) -> Soak {
+    under_load(1, seconds)
+}
+
+/// `seconds` at fidelity 2 under combined load ([`under_load`]).
+pub fn fidelity_2(seconds: f64) -> Soak {
+    under_load(2, seconds)
+}
+
+/// `seconds` at `fidelity` (1 or 2) under combined load: the default bearing at 3500 rpm,
+/// Fa 30 kN, Fy 10 kN, in 1 ms steps, with its energy books: the shaft's work and the
+/// dissipation by the trapezoid rule over the communication points, the change of the
+/// kinetic energy from the start to the end, and the loads' work on the cone's travel.
+pub fn under_load(fidelity: i32, seconds: f64) -> Soak {
     let b = Bearing::default_preset();
     let mut s = Simulation::new(b);
     let mut r = Soak {
-        fidelity: 1,
+        fidelity,
         ..Soak::default()
     };
     let n = (seconds / STEP).round() as usize;
@@ -237,7 +254,7 @@ pub fn fidelity_1(seconds: f64) -> Soak {
     let per_second = (1.0 / STEP).round() as usize;
     let outcome = (|| -> Result<(), (f64, String)> {
         let bad = |t: f64| move |e: trb::simulation::AccessError| (t, format!("{e:?}"));
-        s.set_integer(var::FIDELITY, 1).map_err(bad(0.0))?;
+        s.set_integer(var::FIDELITY, fidelity).map_err(bad(0.0))?;
         s.set_real(var::SPEED, speed).map_err(bad(0.0))?;
         s.set_real(var::FX, fx).map_err(bad(0.0))?;
         s.set_real(var::FY, fy).map_err(bad(0.0))?;

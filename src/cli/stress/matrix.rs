@@ -17,8 +17,9 @@
 //!   fine, a refusal must say why;
 //! - [`Expect::Refuse`]: outside the model's validity range: it must be refused, saying why.
 //!
-//! Fidelity 1 cases are the same list with `fidelity = 1` set and durations of their own
-//! ([`Durations`]); in a build without the dynamic model they are reported as not available.
+//! Fidelity 1 and 2 cases are the same list with `fidelity` set and durations of their own
+//! ([`Durations`]), and a `dynamic` group of their own; in a build without the dynamic model
+//! they are reported as not available.
 //!
 //! # Checks after every successful step
 //!
@@ -244,15 +245,29 @@ impl Durations {
             // steps, near the limiting speed) of wall time per simulated ms with Rosenbrock-W
             // at 1e-4 on this machine: one 1 s long run per preset at its operating speed, 3 ms
             // transients, 2-step constant cases (docs/robustness.md, section 6).
-            (_, false) => Durations {
+            (1, false) => Durations {
                 long: 1.0,
                 transient: 0.003,
                 short_steps: 2,
             },
-            (_, true) => Durations {
+            (1, true) => Durations {
                 long: 0.01,
                 transient: 0.002,
                 short_steps: 1,
+            },
+            // The quasi-dynamic model costs 0.3 to 2 s of wall time per simulated s at 1 ms
+            // steps (docs/performance.md, "The quasi-dynamic model (fidelity 2)"): a 1 s long
+            // run, 50 ms transients (rather than fidelity 1's 3 ms: long enough for the cage
+            // and the rollers' spin to follow a change), 3-step constant cases.
+            (_, false) => Durations {
+                long: 1.0,
+                transient: 0.05,
+                short_steps: 3,
+            },
+            (_, true) => Durations {
+                long: 0.05,
+                transient: 0.01,
+                short_steps: 2,
             },
         }
     }
@@ -299,9 +314,12 @@ impl Builder<'_> {
         let mut all = Vec::new();
         if self.fidelity != 0 {
             all.push(("fidelity", Value::Integer(self.fidelity)));
+        }
+        if self.fidelity == 1 {
             // What a user runs at fidelity 1 unless the case says otherwise: the
             // Rosenbrock-W integrator (2) at tolerance 1e-4 (the explicit default, 0, is
-            // stability-limited to ~10 us steps under load; see FIDELITY_1).
+            // stability-limited to ~10 us steps under load; see FIDELITY_1). Fidelity 2
+            // integrates by backward Euler at the communication step and runs its defaults.
             if !params.iter().any(|(n, _)| *n == "integrator") {
                 all.push(("integrator", Value::Integer(2)));
             }
@@ -428,7 +446,7 @@ pub fn cases(fidelity: i32, quick: bool) -> Vec<Case> {
     let mut seen = std::collections::HashSet::new();
     // At fidelity 1 the long runs cost minutes: only the smallest preset's go through the FMU.
     for c in &mut all {
-        let long = c.group == "long" && (c.fidelity == 0 || c.id.starts_with("32008/"));
+        let long = c.group == "long" && (c.fidelity != 1 || c.id.starts_with("32008/"));
         if (seen.insert((c.preset, c.group)) && (c.group != "long" || long)) || long {
             c.fmu = true;
         }
@@ -879,9 +897,9 @@ fn preset_cases(b: &mut Builder) {
         if tapered { Expect::PassOrRefuse } else { Expect::Pass },
     );
 
-    // --- Dynamic model only: energy balance, rollers and cage accelerating from rest,
-    // skidding at light load, cage impacts, unloaded rollers, each integrator.
-    if b.fidelity == 1 {
+    // --- Dynamic and quasi-dynamic models only: energy balance, rollers and cage accelerating
+    // from rest, skidding at light load, cage impacts, unloaded rollers, each integrator.
+    if b.fidelity != 0 {
         dynamic_cases(b);
     }
 
@@ -1042,7 +1060,8 @@ fn preset_cases(b: &mut Builder) {
     b.last_expect(Expect::Refuse, "parameter tolerance");
 }
 
-/// Cases of the dynamic model only (fidelity 1), 1 ms steps over the transient duration.
+/// Cases of the dynamic and quasi-dynamic models (fidelities 1 and 2), 1 ms steps over the
+/// transient duration.
 fn dynamic_cases(b: &mut Builder) {
     let p = b.p.clone();
     let tapered = p.tapered();
@@ -1059,8 +1078,15 @@ fn dynamic_cases(b: &mut Builder) {
     // The averaged balances run 40 ms in 0.2 ms steps (the second half averaged: the
     // outputs are instantaneous values, and pocket impacts make powerLoss spiky, so 1 ms
     // samples leave ~3 % of sampling noise); the quick list runs them short (unchecked).
-    let energy = 0.03;
-    let (h_avg, n_avg) = if b.d.long >= 1.0 { (h / 5.0, 200) } else { (h, n) };
+    // The quasi-dynamic model has no impacts, and its outputs at 1 ms are what it
+    // integrates: 100 ms of 1 ms steps, checked to 1 % in both lists.
+    let quasi_dynamic = b.fidelity == 2;
+    let energy = if quasi_dynamic { 0.01 } else { 0.03 };
+    let (h_avg, n_avg) = match (quasi_dynamic, b.d.long >= 1.0) {
+        (true, _) => (h, 100),
+        (false, true) => (h / 5.0, 200),
+        (false, false) => (h, n),
+    };
     b.push(
         "dynamic",
         "energy balance, 0.1 C0 combined, constant".into(),
@@ -1094,6 +1120,14 @@ fn dynamic_cases(b: &mut Builder) {
         n,
         Expect::Pass,
     );
+    // (the quasi-dynamic balance does not converge near the rollers' standstill, where the
+    // regularised friction is stiffest: refused, saying so; docs/model.md)
+    let from_rest = |b: &mut Builder| {
+        if b.fidelity == 2 {
+            b.last_expect(Expect::PassOrRefuse, "did not converge");
+        }
+    };
+    from_rest(b);
     b.push(
         "dynamic",
         "startFromRest, cone ramped 0.01 to 1 n_lim".into(),
@@ -1108,6 +1142,7 @@ fn dynamic_cases(b: &mut Builder) {
         n,
         Expect::Pass,
     );
+    from_rest(b);
     // Light load at the limiting speed: the rollers skid; the axial force keeps a tapered
     // bearing seated against the rollers' centrifugal force.
     let light = |b: &Builder, f: f64| {
@@ -1139,6 +1174,20 @@ fn dynamic_cases(b: &mut Builder) {
         n,
         Expect::Pass,
     );
+    from_rest(b);
+    if quasi_dynamic {
+        // the start at the seat with the epicyclic speeds (no steady balance first), which
+        // settles over the first steps
+        b.push(
+            "dynamic",
+            "startSteady = false, 0.1 C0 combined".into(),
+            vec![("startSteady", Value::Boolean(false))],
+            consts(b.combined(0.1)),
+            h,
+            n,
+            Expect::Pass,
+        );
+    }
     // Cage impacts: a rotating light load drives the rollers through the load zone and the
     // cage against them; small and large pocket clearance.
     for (what, clearance) in [("pocket clearance 0.01 mm", 1e-5), ("pocket clearance 1 mm", 1e-3)] {
@@ -1217,7 +1266,8 @@ fn dynamic_cases(b: &mut Builder) {
         );
     }
     // The other integrators and a kinematic cage, at 0.1 C0 (the explicit ones are
-    // stability-limited under heavy load: that is the user's choice of integrator 2).
+    // stability-limited under heavy load: that is the user's choice of integrator 2). The
+    // quasi-dynamic model has no integrator to choose: only the kinematic cage.
     let short = 2;
     for (what, params) in [
         (
@@ -1233,6 +1283,9 @@ fn dynamic_cases(b: &mut Builder) {
             vec![("cage.dynamic", Value::Boolean(false))],
         ),
     ] {
+        if quasi_dynamic && what.starts_with("integrator") {
+            continue;
+        }
         b.push("dynamic", what.into(), params, consts(b.combined(0.1)), h, short, Expect::Pass);
         if what.starts_with("integrator 1") {
             // An explicit fixed step above the stability limit must be refused, saying so
@@ -1559,7 +1612,10 @@ pub fn clarity(message: &str) -> Result<(), String> {
     let names_variable = m.contains("input ") || m.contains("parameter ") || m.contains("value reference");
     // The solvers' refusals: a reason after the statistics, or the step budget; loads beyond
     // the model's range, with the reason.
+    // (the quasi-dynamic balance's refusal names its Newton iterations and the largest
+    // correction against its limit)
     let gives_reason = (m.contains("no quasi-static equilibrium") && m.contains("; "))
+        || (m.contains("quasi-dynamic balance") && m.contains("did not converge") && m.contains("largest correction"))
         || (m.contains("dynamic integration failed") && (m.contains("; ") || m.contains("steps in one communication interval")))
         || m.contains("the load is beyond the model's range: ");
     if names_variable || gives_reason {
@@ -2028,6 +2084,12 @@ fn fidelity_report(run: &Run, f: i32, command: &str) -> String {
         let _ = writeln!(
             s,
             "Every fidelity-1 case runs the Rosenbrock-W integrator (`integrator` = 2) at `tolerance` = 1e-4 unless its name says otherwise.\n"
+        );
+    }
+    if f == 2 {
+        let _ = writeln!(
+            s,
+            "Every fidelity-2 case runs the quasi-dynamic model at its default settings (backward Euler at the communication step, steps halved down to h/64 before a refusal) unless its name says otherwise.\n"
         );
     }
     let _ = writeln!(s, "| preset | cases | passed | refused (clear message) | not available | FAILED |");
