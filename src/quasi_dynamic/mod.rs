@@ -131,6 +131,18 @@ pub struct Balance {
     pub jacobians: u32,
 }
 
+/// How a step's balance begins.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Start {
+    /// From the last step's Jacobian and extrapolated unknowns, the Jacobian refined by
+    /// Broyden's updates while the corrections contract.
+    Secant,
+    /// From the last step's Jacobian and extrapolated unknowns, the Jacobian held.
+    Chord,
+    /// From the step's start with a Jacobian of its own.
+    Afresh,
+}
+
 /// What a step keeps for the next in the state's memory (`DynamicState::memory`), so that a
 /// restored state steps on with the same bits: the step's length and the unknowns it started
 /// from (the next step extrapolates linearly in time from them and its own start), and the
@@ -553,16 +565,25 @@ impl QuasiDynamic {
     /// backward Euler over `h` (`h` infinite: the steady running state, every rate zero).
     /// `state.y` holds the result; on failure it is unchanged.
     pub fn step(&mut self, state: &mut DynamicState, x: &[f64], cage_angle: f64, inputs: &Inputs, h: f64) -> Result<Balance, ModelError> {
-        // from the remembered Jacobian and the extrapolated unknowns; where that fails (an
-        // input that jumped, a roller meeting its pocket's wall), once more from the step's
-        // start with a Jacobian of its own
-        match self.solve(state, x, cage_angle, inputs, h, true) {
-            Ok(balance) => Ok(balance),
-            Err(_) => self.solve(state, x, cage_angle, inputs, h, false),
-        }
+        // from the remembered Jacobian and the extrapolated unknowns, refined by secant
+        // updates; where that fails, with the remembered Jacobian kept as it is (a chord
+        // iteration, slower but surer far from the balance); where that fails too (an input
+        // that jumped, a roller meeting its pocket's wall), once more from the step's start
+        // with a Jacobian of its own
+        // (a steady solve has no secant updates: its first attempt is the chord's)
+        let first = if h.is_finite() { Start::Secant } else { Start::Chord };
+        self.solve(state, x, cage_angle, inputs, h, first)
+            .or_else(|e| {
+                if first == Start::Secant {
+                    self.solve(state, x, cage_angle, inputs, h, Start::Chord)
+                } else {
+                    Err(e)
+                }
+            })
+            .or_else(|_| self.solve(state, x, cage_angle, inputs, h, Start::Afresh))
     }
 
-    /// The balance of `step`, from the memory of the last step where `remember`.
+    /// The balance of `step`, begun as `start` says.
     fn solve(
         &mut self,
         state: &mut DynamicState,
@@ -570,8 +591,9 @@ impl QuasiDynamic {
         cage_angle: f64,
         inputs: &Inputs,
         h: f64,
-        remember: bool,
+        start: Start,
     ) -> Result<Balance, ModelError> {
+        let remember = start != Start::Afresh;
         let z = self.dynamic.g.z as u64;
         let mut y = std::mem::take(&mut self.y);
         let mut u = std::mem::take(&mut self.unknowns);
@@ -581,6 +603,9 @@ impl QuasiDynamic {
         // the last step's Jacobian and its unknowns, which predict this step's
         let memory = Memory::new(self.dynamic.g.z);
         let mut fresh = false;
+        // the secant updates serve time steps whose first guess is close: not the steady
+        // solve from the seat, and not past a correction that grew
+        let mut secant = start == Start::Secant && h.is_finite();
         let mut have_jacobian = remember && memory.read(&state.memory, self, h.is_finite().then_some(h), &mut u, &mut g);
         let mut balance = Balance::default();
         let mut last = f64::INFINITY;
@@ -592,9 +617,7 @@ impl QuasiDynamic {
         let result = loop {
             let cage_residual = self.residuals(inputs, &cage, &u, &g, &mut y);
             balance.roller_evaluations += z;
-            // the secant updates serve the time steps, whose first guess is close; the steady
-            // solve from the seat starts far off, where they mislead the chord iteration
-            if have_jacobian && h.is_finite() {
+            if have_jacobian && secant {
                 self.secant_update(&u, &g, &cage_residual, &cage, &scales);
             }
             if balance.iterations >= MAX_ITERATIONS {
@@ -635,6 +658,9 @@ impl QuasiDynamic {
             if correction <= 1.0 {
                 // converged at the state just evaluated, which the outputs read
                 break Ok(());
+            }
+            if correction > last {
+                secant = false;
             }
             if correction > last && lambda > MIN_DAMPING {
                 if let Some(g0) = &base {
