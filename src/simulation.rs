@@ -575,7 +575,11 @@ impl Simulation {
                 let mut report = st.report;
                 if st.dynamic.is_none() {
                     qs.set_defect_turns(st.defect_turns);
-                    report = match qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs) {
+                    report = match qd
+                        .dynamic
+                        .check_film_heating(&st.inputs)
+                        .and_then(|_| qs.solve(&st.inputs, st.cage_angle, &mut st.warm_start, &mut st.outputs))
+                    {
                         Ok(report) => report,
                         Err(e) => {
                             st.outputs.copy_from(&self.backup);

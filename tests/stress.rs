@@ -197,7 +197,6 @@ const KNOWN_2: &[(&str, &str)] = &[
     ("32018X/parameters/dry, mu = 2", "did not converge"),
     ("32018X/parameters/oil.eta0 = 1e-4 Pa s", "did not converge"),
     ("32018X/parameters/oil.eta0 = 100 Pa s", "did not converge"),
-    ("TRB130x230/parameters/oil.eta0 = 100 Pa s", "did not converge"),
     ("32018X/parameters/oil.alpha = 0", "did not converge"),
     ("32018X/parameters/oil.alpha = 1e-7", "did not converge"),
     ("32018X/parameters/cageSlipRate = 0", "did not converge"),

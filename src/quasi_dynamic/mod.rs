@@ -503,8 +503,9 @@ impl QuasiDynamic {
         }
     }
 
-    /// Advance `state` over a communication step of length `h`: the cage turned on at its
-    /// speed, the defects at their rates, the quasi-static seat `qs` solved at the step's end
+    /// Advance `state` over a communication step of length `h`: the inputs at both ends
+    /// checked against the isothermal films' range (`Dynamic::check_film_heating`), the cage
+    /// turned on at its speed, the defects at their rates, the quasi-static seat `qs` solved at the step's end
     /// (its warm start `warm`, its outputs into `seat_outputs`), then `step`. The inputs at a
     /// time `t` into the step are `inputs_at(t)`. Where a step's balance does not converge,
     /// it is taken in halves, down to 1/64 of `h` (the shorter step's inertia terms condition
@@ -520,6 +521,9 @@ impl QuasiDynamic {
         inputs_at: &dyn Fn(f64) -> Inputs,
         h: f64,
     ) -> Result<Balance, ModelError> {
+        // the isothermal films' range, at both ends of the step, as at fidelity 1
+        self.dynamic.check_film_heating(&inputs_at(0.0))?;
+        self.dynamic.check_film_heating(&inputs_at(h))?;
         let mut start = self.scratch.take().unwrap_or_else(|| state.clone());
         let mut before = self.scratch_step.take().unwrap_or_else(|| state.clone());
         start.copy_from(state);
