@@ -1176,4 +1176,8 @@ pub struct SolveReport {
     /// the initial inputs did not bring input power and dissipation together (or failed).
     #[serde(default)]
     pub run_in_unbalanced: bool,
+    /// The quasi-dynamic model's last step kept the rollers' seats and the cone at the
+    /// quasi-static seat: its balance with them free did not converge.
+    #[serde(default)]
+    pub seat_held: bool,
 }

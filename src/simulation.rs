@@ -358,6 +358,7 @@ impl Simulation {
                 let inputs_at = |t: f64| if t >= h { end_inputs } else { start.ramped(&rates, t) };
                 let balance = qd.advance(qs, &mut st.warm_start, &mut self.range_outputs, ds, &inputs_at, h)?;
                 st.report.iterations = balance.iterations;
+                st.report.seat_held = balance.seat_held;
                 st.cage_angle = qd.cage_angle(ds);
             }
         }

@@ -14,6 +14,9 @@
 //!   distress that shorten the life there are not modelled.
 //! - **Start-up**: no steady running state found for `startSteady`, or the run-in did not
 //!   reach its power balance (`dynamic/run_in.rs`).
+//! - **Quasi-dynamic seat held**: a fidelity-2 step whose balance did not converge with the
+//!   rollers' seats free kept them at the quasi-static seat (`quasi_dynamic`), which leaves
+//!   out the raceway tractions' share of the in-plane forces for that step.
 
 use crate::bearing::Bearing;
 use crate::model::{Inputs, Lubrication, Outputs, Parameters, SolveReport};
@@ -43,15 +46,17 @@ pub enum Warning {
     BoundaryFilm = 2,
     SteadyStartFailed = 3,
     RunInUnbalanced = 4,
+    SeatHeld = 5,
 }
 
 impl Warning {
-    pub const ALL: [Warning; 5] = [
+    pub const ALL: [Warning; 6] = [
         Warning::StaticSafety,
         Warning::SpeedLimit,
         Warning::BoundaryFilm,
         Warning::SteadyStartFailed,
         Warning::RunInUnbalanced,
+        Warning::SeatHeld,
     ];
 
     /// This cause's bit in a set of causes.
@@ -89,6 +94,7 @@ pub fn active(bearing: &Bearing, params: &Parameters, report: &SolveReport, out:
     );
     add(Warning::SteadyStartFailed, report.steady_start_failed);
     add(Warning::RunInUnbalanced, report.run_in_unbalanced);
+    add(Warning::SeatHeld, report.seat_held);
     set
 }
 
@@ -130,6 +136,9 @@ pub fn message(w: Warning, t: f64, bearing: &Bearing, out: &Outputs, inputs: &In
             "t = {t}: startSteady: after running in for {} ms at the initial inputs, the shaft's input power and the contacts' dissipation still differ by more than {} %: the bearing starts before it runs steadily, and the first output samples carry the rest of its start-up transient",
             crate::dynamic::run_in::MAX_RUN_IN * 1e3,
             crate::dynamic::run_in::BALANCE * 100.0
+        ),
+        Warning::SeatHeld => format!(
+            "t = {t}: quasi-dynamic step: the balance with the rollers' seats free did not converge, so the step kept them (and the cone) at the quasi-static seat, which leaves out the raceway tractions' share of the rollers' in-plane forces; reaction and torque may differ by a few per cent from the balanced ones until the seats converge again"
         ),
     }
 }

@@ -120,7 +120,7 @@ pub(crate) struct Constants {
     /// The cage's guiding land as a short journal bearing.
     pub(crate) land: ShortJournal,
     k_land: f64,
-    m_cone: f64,
+    pub(crate) m_cone: f64,
     pub(crate) pitch_radius: f64,
     axial: bool,
     /// Cone translations (x, y, z) the inputs prescribe: x in displacement preload, all three

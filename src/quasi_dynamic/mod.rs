@@ -8,53 +8,56 @@
 //! coordinate is in balance at every communication point, and only the slow motions are
 //! integrated:
 //!
-//! - in balance, in the plane of each roller: its axial and radial seat and its tilt, with the
-//!   cone's equilibrium (force causality) or the cone at its inputs (displacement causality),
-//!   solved by the quasi-static model (`crate::quasi_static`, fidelity 0) with its centrifugal
-//!   and gyroscopic loads;
-//! - in balance, out of the plane: each roller's skew (moments about its in-plane normal m)
-//!   and its place in its pocket (tangential forces, the d'Alembert force m r Ω' of the
-//!   orbit), under the full contact laws of the dynamic model (`crate::dynamic`,
-//!   `contacts::evaluate_roller`): raceway slices with traction, film, supply and mixed
-//!   laws, the rib's normal force through the end-sphere centre and its friction, the cage
-//!   pocket's films and walls, and the gyroscopic moment of spin and orbit (Euler's equations
-//!   of the axisymmetric roller, its attitude moving at the step's tilt and skew rates);
+//! - in balance, each roller's contact coordinates: its axial and radial seat and its tilt
+//!   (forces along the axis and the radius, the moment about the tilt axis a x m), its skew
+//!   (moments about its in-plane normal m) and its place in its pocket (tangential forces,
+//!   the d'Alembert force m r Ω' of the orbit), with the cone's equilibrium (force
+//!   causality) or the cone at its inputs (displacement causality), all under the full
+//!   contact laws of the dynamic model (`crate::dynamic`, `contacts::evaluate_roller`):
+//!   raceway slices with traction, film, supply and mixed laws (so a skewed roller's axial
+//!   thrust moves its seat), the rib's normal force through the end-sphere centre and its
+//!   friction, the cage pocket's films and walls, the centrifugal force, and the gyroscopic
+//!   moment of spin and orbit (Euler's equations of the axisymmetric roller);
 //! - integrated by backward Euler over the communication step h: each roller's spin s about
-//!   its axis, I_a s' = M.a, its pocket place and skew with their inertia, and the cage: its
-//!   speed Ω (every roller orbits with it), J_c Ω' = the pocket and land moments, and its
-//!   centre on the land, m_c c'' = the pocket and land forces (the cage floats on its land:
-//!   held on the axis, its pockets press a skewed roller harder, 13 against 6 N on the [W25]
-//!   bearing deflected by 0.004°, and the largest skew is 2.8e-4 against fidelity 1's
-//!   1.8e-4 rad); the cage's angle follows, psi_c += h Ω at the step's start speed. The seat's
-//!   own rates (axial, radial, tilt) and the free cone translations' are the backward
-//!   differences of the seats at the step's ends. Backward Euler is L-stable: a loaded
-//!   roller's spin relaxes to its traction balance within about 15 µs (the unloaded roller's
-//!   drag sets the slowest spin eigenvalue, -2.3e3 1/s on the [W25] bearing) and its skew mode
-//!   is damped within the step, so at a millisecond step the loaded rollers follow their
-//!   balance and a lightly loaded roller skids as the traction lets it.
+//!   its axis, I_a s' = M.a, and the cage: its speed Ω (every roller orbits with it),
+//!   J_c Ω' = the pocket and land moments, and its centre on the land, m_c c'' = the pocket
+//!   and land forces (the cage floats on its land: held on the axis, its pockets press a
+//!   skewed roller harder, 13 against 6 N on the [W25] bearing deflected by 0.004°, and the
+//!   largest skew is 2.8e-4 against fidelity 1's 1.8e-4 rad); the cage's angle follows,
+//!   psi_c += h Ω at the step's start speed. The contact coordinates keep their inertia in
+//!   the same backward Euler step (their rates and accelerations are the backward
+//!   differences over the step), which at a millisecond step is the quasi-static balance:
+//!   the raceway-normal modes (40 kHz) and the skew mode (about 570 Hz) have h ω of 250 and
+//!   3.6, and backward Euler, L-stable, damps them within the step. A loaded roller's spin
+//!   relaxes to its traction balance within about 15 µs (the unloaded roller's drag sets the
+//!   slowest spin eigenvalue, -2.3e3 1/s on the [W25] bearing), so at a millisecond step the
+//!   loaded rollers follow their balance and a lightly loaded roller skids as the traction
+//!   lets it.
 //!
 //! The unknowns of one step: per roller (its offset in the pocket delta, its skew phi, its spin
-//! s), and the cage's speed Ω and centre (c_y, c_z). The equations: per roller, the tangential
-//! balance (psi'' = Ω'), the skew balance and the spin equation, read from the dynamic model's
-//! right-hand side at a state where the roller moves as the step's rates say (its angular
-//! velocity psi' x + s a + a x a'); for the cage, the backward Euler steps of its speed and
-//! its centre's motion. Newton's method with each roller's 3 × 3 block by finite differences of
-//! that roller's contacts alone and the couplings to the cage by differences of the whole
-//! right-hand side, the cage's three unknowns eliminated by their Schur complement (O(Z) per
-//! iteration). A step that does not converge within [`MAX_ITERATIONS`] is taken in halves,
-//! down to 1/[`MAX_SUBSTEPS`] of the communication step; beyond that it is refused with its
-//! largest correction, and the element stays where the step began.
+//! s, its axial place x, its radial offset dr, its tilt theta), and the globals: the cage's
+//! speed Ω and centre (c_y, c_z) and the cone's free translations. The equations: per roller,
+//! its six equations of motion with the accelerations backward Euler gives (psi'' = Ω' plus
+//! the pocket offset's), read from the dynamic model's right-hand side at a state where the
+//! roller moves as the step's rates say (its angular velocity psi' x + s a + a x a'); for the
+//! cage and the cone, the backward Euler steps of their motion. The quasi-static model
+//! (`crate::quasi_static`, fidelity 0) places the seat the Newton iterations start from: each
+//! step solves it at the cage angle the step ends at and adds the offsets of the balanced
+//! contact coordinates from the seat the last step found (the tractions' share, which moves
+//! slowly). Newton's method with each roller's 6 × 6 block by finite differences of that
+//! roller's contacts alone and the couplings to the globals by differences of the whole
+//! right-hand side, the globals eliminated by their Schur complement (O(Z) per iteration). A
+//! step that does not converge within [`MAX_ITERATIONS`] is taken in halves, down to
+//! 1/[`MAX_SUBSTEPS`] of the communication step; beyond that it is refused with its largest
+//! correction, and the element stays where the step began.
 //!
 //! Held: a housing's motion (the cup is rigid; housing forces are reported, the cup's
 //! acceleration is zero).
-//! The in-plane balance is the quasi-static one: it leaves out the raceway tractions' share of
-//! the roller's in-plane forces (the axial thrust of a skewed roller), tenths of a per cent of
-//! the normal loads at the skews of lubricated running.
 
 use crate::dynamic::contacts::{self, Frame};
 use crate::dynamic::{Dynamic, DynamicState, RollerRecord, CAGE, CONE, PER_ROLLER};
 use crate::model::{Inputs, ModelError};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{SMatrix, SVector, Vector3};
 use std::f64::consts::TAU;
 
 type V3 = Vector3<f64>;
@@ -66,13 +69,30 @@ pub const MAX_ITERATIONS: u32 = 30;
 /// A communication step is taken in at most this many sub-steps (`QuasiDynamic::advance`).
 const MAX_SUBSTEPS: f64 = 64.0;
 
+/// A step whose balance converges only on held seats (`Start::Staged`) is first halved down
+/// to this share of the communication step.
+const HELD_SEAT_STEP: f64 = 0.25;
+
 /// The smallest share of a Newton step that the damping takes.
 const MIN_DAMPING: f64 = 1.0 / 64.0;
 
-/// The per-roller unknowns: offset in the pocket (rad of azimuth), skew (rad), spin (rad/s).
-const UNKNOWNS: usize = 3;
-/// The cage's unknowns: its speed (rad/s) and its centre's y and z (m).
-const CAGE_UNKNOWNS: usize = 3;
+/// The per-roller unknowns: offset in the pocket (rad of azimuth), skew (rad), spin (rad/s),
+/// then the contact coordinates in the roller's axial plane: axial place of the centre of
+/// mass (m), its radial offset from the pitch radius (m), tilt (rad).
+const UNKNOWNS: usize = 6;
+/// The per-roller unknowns out of the axial plane (extrapolated in time from step to step);
+/// those from `SEAT` on are the in-plane seat (predicted as the quasi-static seat plus the
+/// offset the last step found).
+const OUT_OF_PLANE: usize = 3;
+const SEAT: usize = 3;
+/// The global unknowns: the cage's speed (rad/s) and its centre's y and z (m), then the
+/// cone's translations x, y, z (m; held where the inputs prescribe them).
+const GLOBALS: usize = 6;
+const CONE_AT: usize = 3;
+
+/// A roller's or the globals' unknowns, residuals and their Jacobian blocks.
+type Col = SVector<f64, UNKNOWNS>;
+type Block = SMatrix<f64, UNKNOWNS, UNKNOWNS>;
 
 /// Work space and constants of the quasi-dynamic balance.
 #[derive(Debug, Clone)]
@@ -87,21 +107,24 @@ pub struct QuasiDynamic {
     dy_cage: Vec<f64>,
     /// One roller's derivatives.
     dy_roller: [f64; PER_ROLLER],
-    /// Per roller: its seat's rates over the step, its residual, its block A, the block's
-    /// coupling to the cage's unknowns B, the cage equations' columns for the roller C, the
-    /// Newton step's A^-1 r and A^-1 B, and its last correction.
-    rates: Vec<SeatRates>,
-    residual: Vec<Vector3<f64>>,
-    block: Vec<Matrix3<f64>>,
-    to_cage: Vec<Matrix3<f64>>,
-    cage_rows: Vec<Matrix3<f64>>,
-    solved: Vec<(Vector3<f64>, Matrix3<f64>)>,
-    correction: Vec<Vector3<f64>>,
+    /// Per roller: its motion over the step, its residual, its block A, the block's coupling
+    /// to the global unknowns B, the global equations' columns for the roller C, the Newton
+    /// step's A^-1 r and A^-1 B, and its last correction.
+    rates: Vec<RollerStep>,
+    residual: Vec<Col>,
+    block: Vec<Block>,
+    to_cage: Vec<Block>,
+    cage_rows: Vec<Block>,
+    solved: Vec<(Col, Block)>,
+    correction: Vec<Col>,
     records: Vec<RollerRecord>,
-    /// The cage equations' own derivatives D, the cage's last correction, and its unknowns
-    /// at the step's start.
-    d_cage: Matrix3<f64>,
-    cage_start: [f64; CAGE_UNKNOWNS],
+    /// Per roller, its in-plane seat (axial place, radial offset, tilt) from the quasi-static
+    /// solution at the step's end, and the cone's translations there.
+    seats: Vec<[f64; 3]>,
+    cone_seat: [f64; 3],
+    /// The global equations' own derivatives D, and the globals at the step's start.
+    d_cage: Block,
+    cage_start: [f64; GLOBALS],
     /// The rollers' unknowns being solved for and those at the last full Newton step's start.
     unknowns: Vec<[f64; UNKNOWNS]>,
     base: Vec<[f64; UNKNOWNS]>,
@@ -110,13 +133,18 @@ pub struct QuasiDynamic {
     scratch: Option<DynamicState>,
     scratch_step: Option<DynamicState>,
     /// The full Newton step last taken (a damped one takes a share of it).
-    step_taken: Vec<Vector3<f64>>,
-    cage_step_taken: Vector3<f64>,
-    cage_correction: Vector3<f64>,
+    step_taken: Vec<Col>,
+    cage_step_taken: Col,
+    cage_correction: Col,
     /// The unknowns and residuals of the last evaluation, from which the next one updates
     /// the Jacobian (`secant_update`).
-    evaluated: Vec<([f64; UNKNOWNS], Vector3<f64>)>,
-    evaluated_cage: Option<([f64; CAGE_UNKNOWNS], Vector3<f64>)>,
+    evaluated: Vec<([f64; UNKNOWNS], Col)>,
+    evaluated_cage: Option<([f64; GLOBALS], Col)>,
+    /// A staged step's balance on the held seats: state, rollers' unknowns and globals
+    /// (storage reused from step to step).
+    held_y: Vec<f64>,
+    held_u: Vec<[f64; UNKNOWNS]>,
+    held_g: [f64; GLOBALS],
 }
 
 /// The outcome of one step's balance.
@@ -129,49 +157,60 @@ pub struct Balance {
     pub correction: f64,
     /// Jacobians taken (by differences).
     pub jacobians: u32,
+    /// The step kept the rollers' seats and the cone at the quasi-static seat: the balance
+    /// with them released did not converge (the tractions' share of the seat is left out).
+    pub seat_held: bool,
 }
 
 /// How a step's balance begins.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Start {
-    /// From the last step's Jacobian and extrapolated unknowns, the Jacobian refined by
+    /// From the last step's Jacobian and predicted unknowns, the Jacobian refined by
     /// Broyden's updates while the corrections contract.
     Secant,
-    /// From the last step's Jacobian and extrapolated unknowns, the Jacobian held.
+    /// From the last step's Jacobian and predicted unknowns, the Jacobian held.
     Chord,
     /// From the step's start with a Jacobian of its own.
     Afresh,
+    /// As `Afresh`, the seats first held at the quasi-static one (the balance of skew, pocket,
+    /// spin and cage alone), then released: a continuation for an input that jumped, where
+    /// Newton's iterations on every unknown at once meet rollers entering and leaving their
+    /// contacts. Where the released seats do not converge, the held balance stands.
+    Staged,
 }
 
 /// What a step keeps for the next in the state's memory (`DynamicState::memory`), so that a
-/// restored state steps on with the same bits: the step's length and the unknowns it started
-/// from (the next step extrapolates linearly in time from them and its own start), and the
-/// Jacobian it used (the next step's Newton iterations hold it while it contracts their
-/// corrections).
+/// restored state steps on with the same bits: the step's length, the out-of-plane unknowns
+/// it started from (the next step extrapolates in time from them and its own start), the
+/// offsets of the balanced seat from the quasi-static one (the next step adds them to its
+/// own quasi-static seat), and the Jacobian it used (the next step's Newton iterations hold
+/// it while it contracts their corrections).
 struct Memory {
     z: usize,
 }
 
 impl Memory {
     /// First a tag and the lengths of the remembered step and of the one before it; per roller
-    /// its unknowns at the starts of those two steps, A, B and C; then the cage's unknowns at
-    /// the two starts and D.
-    const TAG: f64 = 3.0;
-    const PER_ROLLER: usize = 2 * UNKNOWNS + 3 * 9;
+    /// its out-of-plane unknowns at the starts of those two steps, its seat's offsets, A, B and
+    /// C; then the cage's unknowns at the two starts, the cone's offsets and D.
+    const TAG: f64 = 4.0;
+    const BLOCK: usize = UNKNOWNS * UNKNOWNS;
+    const PER_ROLLER: usize = 2 * OUT_OF_PLANE + (UNKNOWNS - SEAT) + 3 * Self::BLOCK;
 
     fn new(z: usize) -> Memory {
         Memory { z }
     }
 
     fn len(&self) -> usize {
-        3 + self.z * Self::PER_ROLLER + 2 * CAGE_UNKNOWNS + 9
+        3 + self.z * Self::PER_ROLLER + 2 * CONE_AT + (GLOBALS - CONE_AT) + Self::BLOCK
     }
 
-    /// Read the Jacobian into `qd` and extrapolate the unknowns `u`, `g` (this step's start
-    /// values, the end of the remembered step) over this step's length `h` (none: a steady
-    /// solve, no extrapolation): quadratically through the two remembered starts where the
-    /// three steps have the same length, else linearly; false where there is nothing to read.
-    fn read(&self, m: &[f64], qd: &mut QuasiDynamic, h: Option<f64>, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; CAGE_UNKNOWNS]) -> bool {
+    /// Read the Jacobian into `qd` and predict the unknowns `u`, `g` (this step's start
+    /// values out of the plane, the quasi-static seat in it) over this step's length `h`
+    /// (none: a steady solve, no extrapolation): out of the plane quadratically through the
+    /// two remembered starts where the three steps have the same length, else linearly; in
+    /// the plane the seat plus the remembered offsets; false where there is nothing to read.
+    fn read(&self, m: &[f64], qd: &mut QuasiDynamic, h: Option<f64>, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; GLOBALS]) -> bool {
         if m.len() != self.len() || m[0] != Self::TAG {
             return false;
         }
@@ -189,36 +228,50 @@ impl Memory {
                 v + (v - v1) * ratio
             }
         };
+        let b = Self::BLOCK;
         let mut k = 3;
         for j in 0..self.z {
-            for i in 0..UNKNOWNS {
-                u[j][i] = extrapolate(u[j][i], m[k + i], m[k + UNKNOWNS + i]);
+            for i in 0..OUT_OF_PLANE {
+                u[j][i] = extrapolate(u[j][i], m[k + i], m[k + OUT_OF_PLANE + i]);
             }
-            k += 2 * UNKNOWNS;
-            qd.block[j].copy_from_slice(&m[k..k + 9]);
-            qd.to_cage[j].copy_from_slice(&m[k + 9..k + 18]);
-            qd.cage_rows[j].copy_from_slice(&m[k + 18..k + 27]);
-            k += 27;
+            k += 2 * OUT_OF_PLANE;
+            for i in SEAT..UNKNOWNS {
+                u[j][i] += m[k + i - SEAT];
+            }
+            k += UNKNOWNS - SEAT;
+            qd.block[j].copy_from_slice(&m[k..k + b]);
+            qd.to_cage[j].copy_from_slice(&m[k + b..k + 2 * b]);
+            qd.cage_rows[j].copy_from_slice(&m[k + 2 * b..k + 3 * b]);
+            k += 3 * b;
         }
         if qd.dynamic.c.cage_dynamic {
-            for i in 0..CAGE_UNKNOWNS {
-                g[i] = extrapolate(g[i], m[k + i], m[k + CAGE_UNKNOWNS + i]);
+            for i in 0..CONE_AT {
+                g[i] = extrapolate(g[i], m[k + i], m[k + CONE_AT + i]);
             }
         }
-        k += 2 * CAGE_UNKNOWNS;
-        qd.d_cage.copy_from_slice(&m[k..k + 9]);
+        k += 2 * CONE_AT;
+        for i in CONE_AT..GLOBALS {
+            if !qd.dynamic.c.prescribed[i - CONE_AT] {
+                g[i] += m[k + i - CONE_AT];
+            }
+        }
+        k += GLOBALS - CONE_AT;
+        qd.d_cage.copy_from_slice(&m[k..k + b]);
         true
     }
 
-    /// Write the step's start unknowns (from `qd`'s rates and cage start), the remembered
-    /// step's (from `m`, NaN where it holds none) and the step's Jacobian, in place.
-    fn write(&self, m: &mut Vec<f64>, qd: &QuasiDynamic, h: Option<f64>) {
+    /// Write the step's start unknowns out of the plane (from `qd`'s rates and cage start),
+    /// the remembered step's (from `m`, NaN where it holds none), the balanced unknowns' `u`,
+    /// `g` offsets from the step's quasi-static seat (kept as they were after a step on held
+    /// seats, `seat_held`) and the step's Jacobian, in place.
+    fn write(&self, m: &mut Vec<f64>, qd: &QuasiDynamic, h: Option<f64>, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], seat_held: bool) {
         let held = m.len() == self.len() && m[0] == Self::TAG;
         let previous_h = if held { m[1] } else { f64::NAN };
         m.resize(self.len(), f64::NAN);
         m[0] = Self::TAG;
         m[1] = h.unwrap_or(f64::INFINITY);
         m[2] = previous_h;
+        let b = Self::BLOCK;
         let mut k = 3;
         let keep = |m: &mut Vec<f64>, k: usize, start: &[f64]| {
             let n = start.len();
@@ -228,21 +281,39 @@ impl Memory {
             }
         };
         for j in 0..self.z {
-            keep(m, k, &qd.rates[j].start);
-            k += 2 * UNKNOWNS;
-            m[k..k + 9].copy_from_slice(qd.block[j].as_slice());
-            m[k + 9..k + 18].copy_from_slice(qd.to_cage[j].as_slice());
-            m[k + 18..k + 27].copy_from_slice(qd.cage_rows[j].as_slice());
-            k += 27;
+            keep(m, k, &qd.rates[j].start[..OUT_OF_PLANE]);
+            k += 2 * OUT_OF_PLANE;
+            for i in SEAT..UNKNOWNS {
+                // a step on held seats keeps the offsets the last balanced one found
+                if !(seat_held && held) {
+                    m[k + i - SEAT] = if seat_held { 0.0 } else { u[j][i] - qd.seats[j][i - SEAT] };
+                }
+            }
+            k += UNKNOWNS - SEAT;
+            m[k..k + b].copy_from_slice(qd.block[j].as_slice());
+            m[k + b..k + 2 * b].copy_from_slice(qd.to_cage[j].as_slice());
+            m[k + 2 * b..k + 3 * b].copy_from_slice(qd.cage_rows[j].as_slice());
+            k += 3 * b;
         }
-        keep(m, k, &qd.cage_start);
-        k += 2 * CAGE_UNKNOWNS;
-        m[k..k + 9].copy_from_slice(qd.d_cage.as_slice());
+        keep(m, k, &qd.cage_start[..CONE_AT]);
+        k += 2 * CONE_AT;
+        for i in CONE_AT..GLOBALS {
+            if !(seat_held && held) {
+                m[k + i - CONE_AT] = if qd.dynamic.c.prescribed[i - CONE_AT] || seat_held {
+                    0.0
+                } else {
+                    g[i] - qd.cone_seat[i - CONE_AT]
+                };
+            }
+        }
+        k += GLOBALS - CONE_AT;
+        m[k..k + b].copy_from_slice(qd.d_cage.as_slice());
     }
 }
 
 /// The roller's axis a and its skew axis m (the in-plane normal) in the azimuth frame's
 /// components (x, e_r, e_t), for tilt `tilt` and skew `skew` (`contacts::roller_pose`).
+/// The tilt turns a about cos(skew) a x m (da/dtilt = cos(skew) m), the skew about m.
 fn axes(axis_angle: f64, tilt: f64, skew: f64) -> (V3, V3) {
     let (sb, cb) = libm::sincos(axis_angle - tilt);
     let (sf, cf) = libm::sincos(skew);
@@ -257,40 +328,55 @@ fn axis_rate(axis_angle: f64, tilt: f64, skew: f64, tilt_dot: f64, skew_dot: f64
     V3::new(sb * cf, cb * cf, 0.0) * tilt_dot + V3::new(-cb * sf, sb * sf, -cf) * skew_dot
 }
 
-/// One roller's motion over the step that its unknowns do not set: the rates of its in-plane
-/// seat (backward differences of the seats at the step's ends), its unknowns at the step's
-/// start, and 1 / h.
+/// One roller over the step: its unknowns at the step's start and the rates there (backward
+/// Euler takes the accelerations from them: the roller's inertia in its pocket, about m and
+/// in its axial plane), and 1 / h.
 #[derive(Debug, Clone, Copy, Default)]
-struct SeatRates {
-    x_dot: f64,
-    dr_dot: f64,
-    tilt_dot: f64,
+struct RollerStep {
     start: [f64; UNKNOWNS],
-    /// The rates of the offset in the pocket and of the skew at the step's start: backward
-    /// Euler takes their accelerations (the roller's inertia in the pocket and about m).
+    /// The rates of the offset in the pocket, the skew, the axial place, the radial offset
+    /// and the tilt at the step's start.
     pocket_rate: f64,
     skew_rate: f64,
+    x_rate: f64,
+    dr_rate: f64,
+    tilt_rate: f64,
     inv_h: f64,
 }
 
-/// The cage over the step: its unknowns (speed, centre y, z) and their values at the step's
-/// start, its centre's velocity there, and 1 / h.
+impl RollerStep {
+    /// The rates of the unknowns `u` over the step (backward differences).
+    fn rates(&self, u: &[f64; UNKNOWNS]) -> [f64; UNKNOWNS] {
+        std::array::from_fn(|i| (u[i] - self.start[i]) * self.inv_h)
+    }
+}
+
+/// The globals over the step: their values at the step's start, the cage centre's and the
+/// cone's velocities there, and 1 / h.
 #[derive(Debug, Clone, Copy)]
 struct CageStep {
-    start: [f64; CAGE_UNKNOWNS],
+    start: [f64; GLOBALS],
     velocity: [f64; 2],
+    cone_velocity: [f64; 3],
     inv_h: f64,
     /// A cage that moves (`cage.dynamic`); a kinematic one holds its unknowns.
     free: bool,
-    /// The unknowns held at their start values: all three for a kinematic cage; the centre
-    /// in a steady solve, where nothing but the land's film would place it.
-    held: [bool; CAGE_UNKNOWNS],
+    /// The unknowns held at their start values: the cage's three for a kinematic cage, its
+    /// centre in a steady solve (where nothing but the land's film would place it), the
+    /// cone's translations that the inputs prescribe.
+    held: [bool; GLOBALS],
+    /// The rollers' seats held at the quasi-static one (and the cone with them): the steady
+    /// solve, where no rate places a roller that only its centrifugal force presses on the
+    /// cup (the time steps' inertia and damping do).
+    seat_held: bool,
+    /// The cone's translations that the inputs prescribe.
+    prescribed: [bool; 3],
 }
 
 impl CageStep {
     /// The cage's acceleration (angular, then its centre's) that backward Euler gives its
     /// unknowns `g`.
-    fn acceleration(&self, g: &[f64; CAGE_UNKNOWNS]) -> [f64; CAGE_UNKNOWNS] {
+    fn acceleration(&self, g: &[f64; GLOBALS]) -> [f64; 3] {
         let v = self.velocities(g);
         [
             (g[0] - self.start[0]) * self.inv_h,
@@ -300,43 +386,78 @@ impl CageStep {
     }
 
     /// The centre's velocity over the step.
-    fn velocities(&self, g: &[f64; CAGE_UNKNOWNS]) -> [f64; 2] {
+    fn velocities(&self, g: &[f64; GLOBALS]) -> [f64; 2] {
         [(g[1] - self.start[1]) * self.inv_h, (g[2] - self.start[2]) * self.inv_h]
     }
 
-    /// Write the cage's unknowns into `y`.
-    fn place(&self, g: &[f64; CAGE_UNKNOWNS], y: &mut [f64]) {
+    /// The cone's velocity along `k` over the step.
+    fn cone_velocity(&self, g: &[f64; GLOBALS], k: usize) -> f64 {
+        (g[CONE_AT + k] - self.start[CONE_AT + k]) * self.inv_h
+    }
+
+    /// Write the globals `g` into `y` (a prescribed cone translation stays at its input).
+    fn place(&self, g: &[f64; GLOBALS], y: &mut [f64]) {
         let v = self.velocities(g);
         y[CAGE] = g[1];
         y[CAGE + 1] = g[2];
         y[CAGE + 3] = v[0];
         y[CAGE + 4] = v[1];
         y[CAGE + 5] = g[0];
+        for k in 0..3 {
+            if !self.prescribed[k] {
+                y[CONE + k] = g[CONE_AT + k];
+                y[CONE + 3 + k] = self.cone_velocity(g, k);
+            }
+        }
     }
 
-    /// The cage's residuals from the right-hand side `dy` at `g`: the backward Euler
-    /// accelerations less those the forces and moments on it give (zero for a kinematic cage).
-    fn residual(&self, g: &[f64; CAGE_UNKNOWNS], dy: &[f64]) -> Vector3<f64> {
-        if !self.free {
-            return Vector3::zeros();
+    /// Hold the rollers' seats and the cone's free translations where `held`, or release
+    /// them (the cone's prescribed translations stay held).
+    fn hold_seats(&mut self, held: bool) {
+        self.seat_held = held;
+        for k in 0..3 {
+            self.held[CONE_AT + k] = held || self.prescribed[k];
         }
-        let a = self.acceleration(g);
-        Vector3::new(a[0] - dy[CAGE + 5], a[1] - dy[CAGE + 3], a[2] - dy[CAGE + 4])
+    }
+
+    /// A roller's residual `r` with the rows of what is held zero.
+    fn mask(&self, mut r: Col) -> Col {
+        if self.seat_held {
+            r.fixed_rows_mut::<{ UNKNOWNS - SEAT }>(SEAT).fill(0.0);
+        }
+        r
+    }
+
+    /// The global residuals from the right-hand side `dy` at `g`: the backward Euler
+    /// accelerations less those the forces and moments give (zero for what is held).
+    fn residual(&self, g: &[f64; GLOBALS], dy: &[f64]) -> Col {
+        let mut r = Col::zeros();
+        if self.free {
+            let a = self.acceleration(g);
+            r[0] = a[0] - dy[CAGE + 5];
+            r[1] = a[1] - dy[CAGE + 3];
+            r[2] = a[2] - dy[CAGE + 4];
+        }
+        for k in 0..3 {
+            if !self.held[CONE_AT + k] {
+                r[CONE_AT + k] = (self.cone_velocity(g, k) - self.cone_velocity[k]) * self.inv_h - dy[CONE + 3 + k];
+            }
+        }
+        r
     }
 }
 
-/// Limits of one Newton step's corrections and the sizes of its differences.
+/// Limits of one Newton step's corrections and the sizes of its differences, per roller
+/// unknown and per global.
 #[derive(Debug, Clone, Copy)]
 struct Scales {
     perturb: [f64; UNKNOWNS],
-    perturb_cage: [f64; CAGE_UNKNOWNS],
+    perturb_cage: [f64; GLOBALS],
     limit: [f64; UNKNOWNS],
-    limit_cage: [f64; CAGE_UNKNOWNS],
-    /// Largest correction of the offset in the pocket (rad), the skew (rad) and the cage's
-    /// centre (m) in one iteration.
-    max_pocket: f64,
-    max_skew: f64,
-    max_centre: f64,
+    limit_cage: [f64; GLOBALS],
+    /// Largest correction of each unknown in one iteration.
+    max_step: [f64; UNKNOWNS],
+    max_step_cage: [f64; GLOBALS],
 }
 
 impl QuasiDynamic {
@@ -350,25 +471,30 @@ impl QuasiDynamic {
             y_cage: vec![0.0; n],
             dy_cage: vec![0.0; n],
             dy_roller: [0.0; PER_ROLLER],
-            rates: vec![SeatRates::default(); z],
-            residual: vec![Vector3::zeros(); z],
-            block: vec![Matrix3::zeros(); z],
-            to_cage: vec![Matrix3::zeros(); z],
-            cage_rows: vec![Matrix3::zeros(); z],
-            solved: vec![(Vector3::zeros(), Matrix3::zeros()); z],
-            correction: vec![Vector3::zeros(); z],
+            rates: vec![RollerStep::default(); z],
+            residual: vec![Col::zeros(); z],
+            block: vec![Block::zeros(); z],
+            to_cage: vec![Block::zeros(); z],
+            cage_rows: vec![Block::zeros(); z],
+            solved: vec![(Col::zeros(), Block::zeros()); z],
+            correction: vec![Col::zeros(); z],
             records: vec![RollerRecord::default(); z],
-            d_cage: Matrix3::identity(),
-            cage_start: [0.0; CAGE_UNKNOWNS],
+            seats: vec![[0.0; 3]; z],
+            cone_seat: [0.0; 3],
+            d_cage: Block::identity(),
+            cage_start: [0.0; GLOBALS],
             unknowns: Vec::with_capacity(z),
             base: Vec::with_capacity(z),
             scratch: None,
             scratch_step: None,
-            step_taken: vec![Vector3::zeros(); z],
-            cage_step_taken: Vector3::zeros(),
-            cage_correction: Vector3::zeros(),
-            evaluated: vec![([0.0; UNKNOWNS], Vector3::zeros()); z],
+            step_taken: vec![Col::zeros(); z],
+            cage_step_taken: Col::zeros(),
+            cage_correction: Col::zeros(),
+            evaluated: vec![([0.0; UNKNOWNS], Col::zeros()); z],
             evaluated_cage: None,
+            held_y: vec![0.0; n],
+            held_u: Vec::with_capacity(z),
+            held_g: [0.0; GLOBALS],
         }
     }
 
@@ -376,8 +502,8 @@ impl QuasiDynamic {
         TAU / self.dynamic.g.z as f64
     }
 
-    /// Roller `j`'s unknowns (delta, phi, s) in state `y`: s is the spin about its axis relative
-    /// to the azimuth frame, which orbits at psi'.
+    /// Roller `j`'s unknowns (delta, phi, s, x, dr, theta) in state `y`: s is the spin about
+    /// its axis relative to the azimuth frame, which orbits at psi'.
     fn unknowns(&self, y: &[f64], j: usize) -> [f64; UNKNOWNS] {
         let c = &self.dynamic.c;
         let o = c.layout.roller(j);
@@ -385,59 +511,64 @@ impl QuasiDynamic {
         let (a, _) = axes(self.dynamic.g.axis_angle, y[o + 6], y[o + 7]);
         // the spin relative to the orbiting azimuth frame: w.a less the orbit's share
         let spin = y[o + 8] * a[0] + y[o + 9] * a[1] + y[o + 10] * a[2] - y[o + 5] * a[0];
-        [delta, y[o + 7], spin]
+        [delta, y[o + 7], spin, y[o], y[o + 1], y[o + 6]]
     }
 
-    /// Roller `j`'s rates of its offset in the pocket (its orbit's rate less the cage's) and
-    /// of its skew (the axis' rate w_rel x a along the skew direction) in state `y`.
-    fn pocket_and_skew_rates(&self, y: &[f64], j: usize) -> (f64, f64) {
+    /// Roller `j`'s rates of its offset in the pocket (its orbit's rate less the cage's), of
+    /// its skew and of its tilt (the axis' rate w_rel x a along da/dphi and da/dtheta) in
+    /// state `y`.
+    fn attitude_rates(&self, y: &[f64], j: usize) -> (f64, f64, f64) {
         let o = self.dynamic.c.layout.roller(j);
         let axis_angle = self.dynamic.g.axis_angle;
         let (tilt, skew) = (y[o + 6], y[o + 7]);
-        let (a, _) = axes(axis_angle, tilt, skew);
+        let (a, m) = axes(axis_angle, tilt, skew);
         let w_rel = V3::new(y[o + 8] - y[o + 5], y[o + 9], y[o + 10]);
+        let a_dot = w_rel.cross(&a);
         let along_skew = axis_rate(axis_angle, tilt, skew, 0.0, 1.0);
-        (y[o + 5] - y[CAGE + 5], w_rel.cross(&a).dot(&along_skew))
+        let cf = libm::cos(skew);
+        (y[o + 5] - y[CAGE + 5], a_dot.dot(&along_skew), a_dot.dot(&m) / cf)
     }
 
     /// Write roller `j`'s unknowns `u` into `y`, with the cage at angle `y[CAGE + 2]` turning
     /// at `omega`: the roller orbits at omega plus the rate of its place in the pocket, its
-    /// seat moves at the rates `rates` give, its axis at the tilt rate and the skew's rate over
-    /// the step, and it spins at s about its axis relative to the azimuth frame: angular
-    /// velocity psi' x + s a + a x a'.
+    /// seat moves at its rates over the step, its axis at the tilt's and the skew's rates,
+    /// and it spins at s about its axis relative to the azimuth frame: angular velocity
+    /// psi' x + s a + a x a'.
     fn place(&self, j: usize, u: &[f64; UNKNOWNS], omega: f64, y: &mut [f64]) {
-        let (axis_angle, o, rates) = (self.dynamic.g.axis_angle, self.dynamic.c.layout.roller(j), &self.rates[j]);
-        let delta_dot = (u[0] - rates.start[0]) * rates.inv_h;
-        let skew_dot = (u[1] - rates.start[1]) * rates.inv_h;
-        let psid = omega + delta_dot;
+        let (axis_angle, o, step) = (self.dynamic.g.axis_angle, self.dynamic.c.layout.roller(j), &self.rates[j]);
+        let rate = step.rates(u);
+        let psid = omega + rate[0];
+        y[o] = u[3];
+        y[o + 1] = u[4];
         y[o + 2] = y[CAGE + 2] + self.pitch() * j as f64 + u[0];
-        y[o + 3] = rates.x_dot;
-        y[o + 4] = rates.dr_dot;
+        y[o + 3] = rate[3];
+        y[o + 4] = rate[4];
         y[o + 5] = psid;
+        y[o + 6] = u[5];
         y[o + 7] = u[1];
-        let tilt = y[o + 6];
-        let (a, _) = axes(axis_angle, tilt, u[1]);
-        let a_dot = axis_rate(axis_angle, tilt, u[1], rates.tilt_dot, skew_dot);
+        let (a, _) = axes(axis_angle, u[5], u[1]);
+        let a_dot = axis_rate(axis_angle, u[5], u[1], rate[5], rate[1]);
         let w = V3::x() * psid + a * u[2] + a.cross(&a_dot);
         y[o + 8] = w[0];
         y[o + 9] = w[1];
         y[o + 10] = w[2];
     }
 
-    /// Place every roller's unknowns `u` and the cage's `g` in `y`.
-    fn place_all(&self, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; CAGE_UNKNOWNS], y: &mut [f64]) {
+    /// Place every roller's unknowns `u` and the globals `g` in `y`.
+    fn place_all(&self, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], y: &mut [f64]) {
         cage.place(g, y);
         for (j, uj) in u.iter().enumerate() {
             self.place(j, uj, g[0], y);
         }
     }
 
-    /// The seat of the in-plane balance: cone translation and each roller's axial and radial
-    /// place and tilt from the quasi-static solution `x` (`Dynamic::initial_state`'s layout),
-    /// at cage angle `cage_angle`; a housing's cup centred.
-    fn seat(&self, x: &[f64], cage_angle: f64, y: &mut [f64]) {
+    /// The quasi-static seat: cone translation and each roller's axial and radial place and
+    /// tilt from the quasi-static solution `x` (`Dynamic::initial_state`'s layout), at cage
+    /// angle `cage_angle`, into `y` and `seats`; a housing's cup centred.
+    fn seat(&mut self, x: &[f64], cage_angle: f64, y: &mut [f64]) {
         let d = &self.dynamic;
         y[CONE..CONE + 3].copy_from_slice(&x[..3]);
+        self.cone_seat.copy_from_slice(&x[..3]);
         y[CAGE + 2] = cage_angle;
         if let Some(hs) = d.c.layout.housing {
             y[hs..hs + 4].iter_mut().for_each(|v| *v = 0.0);
@@ -448,43 +579,59 @@ impl QuasiDynamic {
             y[o] = ax;
             y[o + 1] = dr;
             y[o + 6] = tilt;
+            self.seats[j] = [ax, dr, tilt];
         }
     }
 
-    /// The per-roller residual (psi'' - Ω', skew balance, spin equation) of the unknowns `u`
-    /// from the roller's derivatives `d`, with the cage's acceleration `omega_dot`: the
-    /// angular velocity's rate in the azimuth frame that `place` implies, Ω' x + s' a + s a',
-    /// less the one the moments give, along the skew axis m and the roller's axis a (its
-    /// component along the tilt axis is the in-plane balance's).
-    fn roller_residual(&self, j: usize, y: &[f64], d: &[f64], u: &[f64; UNKNOWNS], omega_dot: f64) -> Vector3<f64> {
-        let (axis_angle, o, rates) = (self.dynamic.g.axis_angle, self.dynamic.c.layout.roller(j), &self.rates[j]);
-        let (tilt, skew) = (y[o + 6], y[o + 7]);
+    /// The per-roller residual of the unknowns `u` from the roller's derivatives `d`, with the
+    /// cage's acceleration `omega_dot`: psi'' - Ω' less the pocket offset's acceleration; the
+    /// angular velocity's rate in the azimuth frame that `place` implies,
+    /// Ω' x + s' a + s a' + a x a'' (a x a'' = m phi'' + cos(phi) (a x m) theta'', the
+    /// products of rates dropped), less the one the moments give, along the skew axis m, the
+    /// roller's axis a and the tilt axis a x m; and x'', dr'' less the accelerations backward
+    /// Euler gives them.
+    fn roller_residual(&self, j: usize, d: &[f64], u: &[f64; UNKNOWNS], omega_dot: f64) -> Col {
+        let (axis_angle, step) = (self.dynamic.g.axis_angle, &self.rates[j]);
+        let (tilt, skew) = (u[5], u[1]);
         let (a, m) = axes(axis_angle, tilt, skew);
-        let pocket_dot = (u[0] - rates.start[0]) * rates.inv_h;
-        let pocket_ddot = (pocket_dot - rates.pocket_rate) * rates.inv_h;
-        let skew_dot = (u[1] - rates.start[1]) * rates.inv_h;
-        let skew_ddot = (skew_dot - rates.skew_rate) * rates.inv_h;
-        let spin_dot = (u[2] - rates.start[2]) * rates.inv_h;
-        let a_dot = axis_rate(axis_angle, tilt, skew, rates.tilt_dot, skew_dot);
-        // the rate of a x a' is a x a'' = m skew'' (the tilt's acceleration is the in-plane
-        // balance's)
-        let rate = V3::new(d[8], d[9], d[10]) - V3::x() * omega_dot - a * spin_dot - a_dot * u[2] - m * skew_ddot;
-        let residual = Vector3::new(d[5] - omega_dot - pocket_ddot, rate.dot(&m), rate.dot(&a));
-        if self.dynamic.c.cage_dynamic {
-            residual
+        let rate = step.rates(u);
+        let accel = |rate: f64, start: f64| (rate - start) * step.inv_h;
+        let pocket_ddot = accel(rate[0], step.pocket_rate);
+        let skew_ddot = accel(rate[1], step.skew_rate);
+        let tilt_ddot = accel(rate[5], step.tilt_rate);
+        let a_dot = axis_rate(axis_angle, tilt, skew, rate[5], rate[1]);
+        let t = a.cross(&m);
+        let w_rate = V3::new(d[8], d[9], d[10])
+            - V3::x() * omega_dot
+            - a * rate[2]
+            - a_dot * u[2]
+            - m * skew_ddot
+            - t * (libm::cos(skew) * tilt_ddot);
+        let pocket = if self.dynamic.c.cage_dynamic {
+            d[5] - omega_dot - pocket_ddot
         } else {
             // a kinematic cage: the roller keeps the middle of its pocket
-            Vector3::new(0.0, residual[1], residual[2])
-        }
+            0.0
+        };
+        Col::from([
+            pocket,
+            w_rate.dot(&m),
+            w_rate.dot(&a),
+            d[3] - accel(rate[3], step.x_rate),
+            d[4] - accel(rate[4], step.dr_rate),
+            w_rate.dot(&t),
+        ])
     }
 
     /// Perturbations and convergence limits at the reference speed `speed` (rad/s, at least
-    /// 100): the
-    /// offset in the pocket to 1e-4 of the pocket's clearance in azimuth, the skew to 1e-8
-    /// rad (1e-4 of the skews of lubricated running, 6e-4 of the 0.001° that a mean skew is
-    /// compared to), the spin and the cage speed to 1e-6 and 1e-7 of the speed (a slip of
-    /// 1e-6 changes a loaded roller's traction by a few thousandths of a per cent of its
-    /// load), the cage's centre to 1e-3 of its land clearance.
+    /// 100): the offset in the pocket to 1e-4 of the pocket's clearance in azimuth, the skew
+    /// to 1e-8 rad (1e-4 of the skews of lubricated running, 6e-4 of the 0.001° that a mean
+    /// skew is compared to), the spin and the cage speed to 1e-6 and 1e-7 of the speed (a slip
+    /// of 1e-6 changes a loaded roller's traction by a few thousandths of a per cent of its
+    /// load), the cage's centre to 1e-3 of its land clearance; the seat's places and the
+    /// cone's translations to 1e-10 m (1e-5 of the micrometres of a contact's approach, a
+    /// tenth of a newton on its stiffness of about 1e9 N/m) and the tilt to 1e-9 rad (1e-4 of
+    /// the tilts of a deflected shaft, 2e-11 m at the roller's ends).
     fn scales(&self, speed: f64) -> Scales {
         let c = &self.dynamic.c;
         let pocket = c.pocket_half.max(1e-6) / c.pitch_radius;
@@ -492,14 +639,14 @@ impl QuasiDynamic {
         // at least the speed of 100 rad/s that the dynamic model's tolerance scales take: near
         // standstill the slips' own scale is the regularisation speed of the friction laws
         let w = speed.abs().max(100.0);
+        let (seat, tilt) = (1e-10, 1e-9);
         Scales {
-            perturb: [1e-4 * pocket, 1e-8, 1e-7 * w],
-            perturb_cage: [1e-8 * w, 1e-4 * land, 1e-4 * land],
-            limit: [1e-4 * pocket, 1e-8, 1e-6 * w],
-            limit_cage: [1e-7 * w, 1e-3 * land, 1e-3 * land],
-            max_pocket: 0.5 * pocket,
-            max_skew: 0.02,
-            max_centre: 0.25 * land,
+            perturb: [1e-4 * pocket, 1e-8, 1e-7 * w, 10.0 * seat, 10.0 * seat, 10.0 * tilt],
+            perturb_cage: [1e-8 * w, 1e-4 * land, 1e-4 * land, 10.0 * seat, 10.0 * seat, 10.0 * seat],
+            limit: [1e-4 * pocket, 1e-8, 1e-6 * w, seat, seat, tilt],
+            limit_cage: [1e-7 * w, 1e-3 * land, 1e-3 * land, seat, seat, seat],
+            max_step: [0.5 * pocket, 0.02, f64::INFINITY, 2e-6, 2e-6, 2e-4],
+            max_step_cage: [f64::INFINITY, 0.25 * land, 0.25 * land, 5e-6, 5e-6, 5e-6],
         }
     }
 
@@ -542,10 +689,18 @@ impl QuasiDynamic {
                 .solve_seat(&inputs, cage_angle, warm, seat_outputs)
                 .and_then(|_| self.step(state, warm, cage_angle, &inputs, hs));
             match result {
+                // a balance on held seats is taken only on a step no longer than
+                // `HELD_SEAT_STEP` of the communication step: on a shorter step the free seats'
+                // balance is closer to its start
+                Ok(balance) if balance.seat_held && sub > h * HELD_SEAT_STEP && hs.is_finite() => {
+                    state.copy_from(&before);
+                    sub *= 0.5;
+                }
                 Ok(balance) => {
                     total.iterations += balance.iterations;
                     total.roller_evaluations += balance.roller_evaluations;
                     total.jacobians += balance.jacobians;
+                    total.seat_held |= balance.seat_held;
                     total.correction = balance.correction;
                     done = end;
                 }
@@ -573,8 +728,11 @@ impl QuasiDynamic {
         // updates; where that fails, with the remembered Jacobian kept as it is (a chord
         // iteration, slower but surer far from the balance); where that fails too (an input
         // that jumped, a roller meeting its pocket's wall), once more from the step's start
-        // with a Jacobian of its own
-        // (a steady solve has no secant updates: its first attempt is the chord's)
+        // with a Jacobian of its own; last, so again with the seats held first and released
+        // once the rest is in balance: where the released seats do not converge, the step
+        // keeps the balance on the held ones and says so (`Balance::seat_held`)
+        // (a steady solve has no secant updates: its first attempt is the chord's; it holds
+        // the seats throughout)
         let first = if h.is_finite() { Start::Secant } else { Start::Chord };
         self.solve(state, x, cage_angle, inputs, h, first)
             .or_else(|e| {
@@ -585,6 +743,13 @@ impl QuasiDynamic {
                 }
             })
             .or_else(|_| self.solve(state, x, cage_angle, inputs, h, Start::Afresh))
+            .or_else(|e| {
+                if h.is_finite() {
+                    self.solve(state, x, cage_angle, inputs, h, Start::Staged)
+                } else {
+                    Err(e)
+                }
+            })
     }
 
     /// The balance of `step`, begun as `start` says.
@@ -597,12 +762,17 @@ impl QuasiDynamic {
         h: f64,
         start: Start,
     ) -> Result<Balance, ModelError> {
-        let remember = start != Start::Afresh;
+        let remember = !matches!(start, Start::Afresh | Start::Staged);
         let z = self.dynamic.g.z as u64;
         let mut y = std::mem::take(&mut self.y);
         let mut u = std::mem::take(&mut self.unknowns);
         let mut base_u = std::mem::take(&mut self.base);
-        let (cage, mut g) = self.prepare(state, x, cage_angle, inputs, h, &mut y, &mut u);
+        let (mut cage, mut g) = self.prepare(state, x, cage_angle, inputs, h, &mut y, &mut u);
+        let mut limit = MAX_ITERATIONS;
+        if start == Start::Staged {
+            cage.hold_seats(true);
+            limit *= 2;
+        }
         let scales = self.scales(inputs.relative_speed());
         // the last step's Jacobian and its unknowns, which predict this step's
         let memory = Memory::new(self.dynamic.g.z);
@@ -615,7 +785,7 @@ impl QuasiDynamic {
         let mut last = f64::INFINITY;
         // the last full Newton step's start and the share of it taken (damped where the
         // corrections grow: Deuflhard's natural monotonicity test on the scaled corrections)
-        let mut base: Option<[f64; CAGE_UNKNOWNS]> = None;
+        let mut base: Option<[f64; GLOBALS]> = None;
         let mut lambda = 1.0;
         self.evaluated_cage = None;
         let result = loop {
@@ -624,7 +794,7 @@ impl QuasiDynamic {
             if have_jacobian && secant {
                 self.secant_update(&u, &g, &cage_residual, &cage, &scales);
             }
-            if balance.iterations >= MAX_ITERATIONS {
+            if balance.iterations >= limit {
                 break Err(balance.correction);
             }
             balance.iterations += 1;
@@ -637,13 +807,11 @@ impl QuasiDynamic {
             let slow = correction.is_some_and(|c| c > 1.0 && c > 0.5 * last);
             if !have_jacobian || correction.is_none() || (slow && !fresh) {
                 self.blocks(inputs, &cage, &u, &g, &scales, &mut y);
-                balance.roller_evaluations += UNKNOWNS as u64 * z;
-                self.d_cage = if cage.free {
-                    balance.roller_evaluations += CAGE_UNKNOWNS as u64 * z;
-                    self.cage_coupling(inputs, &cage, &u, &g, &scales, &cage_residual, &y)
-                } else {
-                    Matrix3::identity()
-                };
+                let perturbed = if cage.seat_held { SEAT } else { UNKNOWNS } - usize::from(!cage.free);
+                balance.roller_evaluations += perturbed as u64 * z;
+                let (d_cage, spent) = self.cage_coupling(inputs, &cage, &u, &g, &scales, &cage_residual, &y);
+                self.d_cage = d_cage;
+                balance.roller_evaluations += spent * z;
                 have_jacobian = true;
                 fresh = true;
                 balance.jacobians += 1;
@@ -660,6 +828,16 @@ impl QuasiDynamic {
                 break Err(correction);
             }
             if correction <= 1.0 {
+                if start == Start::Staged && cage.seat_held {
+                    // the rest in balance on the held seats: keep it, and release them
+                    self.held_y.copy_from_slice(&y);
+                    self.held_u.clone_from(&u);
+                    self.held_g = g;
+                    cage.hold_seats(false);
+                    (have_jacobian, last, base, lambda) = (false, f64::INFINITY, None, 1.0);
+                    self.evaluated_cage = None;
+                    continue;
+                }
                 // converged at the state just evaluated, which the outputs read
                 break Ok(());
             }
@@ -675,7 +853,7 @@ impl QuasiDynamic {
                             uj[k] = u0j[k] + lambda * dj[k];
                         }
                     }
-                    for k in 0..CAGE_UNKNOWNS {
+                    for k in 0..GLOBALS {
                         g[k] = g0[k] + lambda * self.cage_step_taken[k];
                     }
                     continue;
@@ -688,10 +866,21 @@ impl QuasiDynamic {
             self.apply_correction(&mut u, &mut g, lambda);
             last = correction;
         };
+        let result = match result {
+            Err(_) if start == Start::Staged && !cage.seat_held => {
+                // the released seats did not converge: the balance on the held ones stands
+                y.copy_from_slice(&self.held_y);
+                u.clone_from(&self.held_u);
+                g = self.held_g;
+                balance.seat_held = true;
+                Ok(())
+            }
+            other => other,
+        };
         let outcome = match result {
             Ok(()) => {
                 state.y.copy_from_slice(&y);
-                memory.write(&mut state.memory, self, h.is_finite().then_some(h));
+                memory.write(&mut state.memory, self, h.is_finite().then_some(h), &u, &g, balance.seat_held);
                 if h.is_finite() {
                     state.t += h;
                 }
@@ -702,7 +891,7 @@ impl QuasiDynamic {
             }
             Err(correction) => Err(ModelError::NoEquilibrium {
                 message: format!(
-                    "the quasi-dynamic balance of skew, pocket, spin and cage did not converge in {} Newton iterations (largest correction {correction:.3e} times its limit)",
+                    "the quasi-dynamic balance of seat, skew, pocket, spin and cage did not converge in {} Newton iterations (largest correction {correction:.3e} times its limit)",
                     balance.iterations
                 ),
             }),
@@ -711,10 +900,11 @@ impl QuasiDynamic {
         outcome
     }
 
-    /// Seat the rollers for the step into `y` (from `state`, the seat `x` at `cage_angle`),
-    /// with their seat rates over `h`; write the rollers' unknowns to start from into `u` and
-    /// return the cage's step and unknowns (those of `state`; with a kinematic cage, the
-    /// epicyclic speed, the cage on the axis and the rollers in their pockets' middle).
+    /// Seat the rollers for the step into `y` (from `state`, the quasi-static seat `x` at
+    /// `cage_angle`), with their rates at the step's start; write the rollers' unknowns to
+    /// start from into `u` (out of the plane those of `state`, in it the seat) and return the
+    /// globals' step and unknowns (the cage's of `state`, with a kinematic cage the epicyclic
+    /// speed, the cage on the axis and the rollers in their pockets' middle; the cone's seat).
     #[allow(clippy::too_many_arguments)]
     fn prepare(
         &mut self,
@@ -725,7 +915,7 @@ impl QuasiDynamic {
         h: f64,
         y: &mut [f64],
         u: &mut Vec<[f64; UNKNOWNS]>,
-    ) -> (CageStep, [f64; CAGE_UNKNOWNS]) {
+    ) -> (CageStep, [f64; GLOBALS]) {
         let z = self.dynamic.g.z;
         let inv_h = if h.is_finite() { 1.0 / h } else { 0.0 };
         y.copy_from_slice(&state.y);
@@ -733,25 +923,37 @@ impl QuasiDynamic {
         let c = &self.dynamic.c;
         let free = c.cage_dynamic;
         for k in 0..3 {
-            // a free cone translation moves at its backward difference over the step
-            y[CONE + 3 + k] = if c.prescribed[k] {
-                0.0
-            } else {
-                (y[CONE + k] - state.y[CONE + k]) * inv_h
-            };
+            // a prescribed cone translation is at its input, at rest over the step
+            if c.prescribed[k] {
+                y[CONE + 3 + k] = 0.0;
+            }
         }
-        let g = if free {
+        let cage3 = if free {
             [state.y[CAGE + 5], state.y[CAGE], state.y[CAGE + 1]]
         } else {
             [c.cage_ratio * inputs.relative_speed() + inputs.cup_speed, 0.0, 0.0]
         };
-        self.cage_start = g;
+        let cone = |k: usize| state.y[CONE + k];
+        let start = [cage3[0], cage3[1], cage3[2], cone(0), cone(1), cone(2)];
+        let g = [cage3[0], cage3[1], cage3[2], y[CONE], y[CONE + 1], y[CONE + 2]];
+        self.cage_start = start;
+        let steady = !h.is_finite();
         let cage = CageStep {
-            start: g,
+            start,
             velocity: if free { [state.y[CAGE + 3], state.y[CAGE + 4]] } else { [0.0; 2] },
+            cone_velocity: [state.y[CONE + 3], state.y[CONE + 4], state.y[CONE + 5]],
             inv_h,
             free,
-            held: [!free, !free || !h.is_finite(), !free || !h.is_finite()],
+            held: [
+                !free,
+                !free || steady,
+                !free || steady,
+                c.prescribed[0] || steady,
+                c.prescribed[1] || steady,
+                c.prescribed[2] || steady,
+            ],
+            seat_held: steady,
+            prescribed: c.prescribed,
         };
         u.clear();
         for j in 0..z {
@@ -760,67 +962,77 @@ impl QuasiDynamic {
             if !free {
                 start[0] = 0.0;
             }
-            let (pocket_rate, skew_rate) = self.pocket_and_skew_rates(&state.y, j);
-            self.rates[j] = SeatRates {
-                x_dot: (y[o] - state.y[o]) * inv_h,
-                dr_dot: (y[o + 1] - state.y[o + 1]) * inv_h,
-                tilt_dot: (y[o + 6] - state.y[o + 6]) * inv_h,
+            let (pocket_rate, skew_rate, tilt_rate) = self.attitude_rates(&state.y, j);
+            self.rates[j] = RollerStep {
                 start,
                 pocket_rate: if free { pocket_rate } else { 0.0 },
                 skew_rate,
+                x_rate: state.y[o + 3],
+                dr_rate: state.y[o + 4],
+                tilt_rate,
                 inv_h,
             };
-            u.push(start);
+            let mut first = start;
+            first[SEAT..].copy_from_slice(&self.seats[j]);
+            u.push(first);
         }
         (cage, g)
     }
 
     /// Place the unknowns `u` and `g` in `y`, evaluate the contacts there (the dynamic
     /// model's evaluation, which the outputs read) and write each roller's residual; return
-    /// the cage's.
-    fn residuals(
-        &mut self,
-        inputs: &Inputs,
-        cage: &CageStep,
-        u: &[[f64; UNKNOWNS]],
-        g: &[f64; CAGE_UNKNOWNS],
-        y: &mut [f64],
-    ) -> Vector3<f64> {
+    /// the globals'.
+    fn residuals(&mut self, inputs: &Inputs, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], y: &mut [f64]) -> Col {
         self.place_all(cage, u, g, y);
         self.dynamic.rhs(inputs, y, &mut self.dy);
         let omega_dot = cage.acceleration(g)[0];
         for (j, uj) in u.iter().enumerate() {
             let o = self.dynamic.c.layout.roller(j);
-            self.residual[j] = self.roller_residual(j, y, &self.dy[o..o + PER_ROLLER], uj, omega_dot);
+            self.residual[j] = cage.mask(self.roller_residual(j, &self.dy[o..o + PER_ROLLER], uj, omega_dot));
         }
         cage.residual(g, &self.dy)
     }
 
-    /// Each roller's 3 x 3 block and its columns of the cage equations by forward differences
-    /// of its own contacts (the frame of cone and cage unchanged), about the state `y` the last
-    /// `residuals` evaluated.
-    fn blocks(&mut self, inputs: &Inputs, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; CAGE_UNKNOWNS], sc: &Scales, y: &mut [f64]) {
+    /// The global equations' rows (cage: its speed and centre; cone: its free translations)
+    /// that roller record `rec` less `base` changes, per unit of the perturbation `by`.
+    fn global_rows(&self, rec: &RollerRecord, base: &RollerRecord, cage: &CageStep, by: f64) -> Col {
+        let c = &self.dynamic.c;
+        let mut col = Col::zeros();
+        if cage.free {
+            col[0] = -(rec.m_cage - base.m_cage) / c.j_cage;
+            col[1] = -(rec.f_cage[1] - base.f_cage[1]) / c.m_cage;
+            col[2] = -(rec.f_cage[2] - base.f_cage[2]) / c.m_cage;
+        }
+        for k in 0..3 {
+            if !cage.held[CONE_AT + k] {
+                col[CONE_AT + k] = -(rec.f_cone[k] - base.f_cone[k]) / c.m_cone;
+            }
+        }
+        col / by
+    }
+
+    /// Each roller's 6 x 6 block and its columns of the global equations by forward
+    /// differences of its own contacts (the frame of cone and cage unchanged), about the state
+    /// `y` the last `residuals` evaluated.
+    fn blocks(&mut self, inputs: &Inputs, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], sc: &Scales, y: &mut [f64]) {
         let frame = contacts::frame(&self.dynamic.g, &self.dynamic.c, inputs, y);
         self.records.copy_from_slice(self.dynamic.records());
-        let (j_cage, m_cage) = (self.dynamic.c.j_cage, self.dynamic.c.m_cage);
         let omega_dot = cage.acceleration(g)[0];
         for (j, uj) in u.iter().enumerate() {
             let o = self.dynamic.c.layout.roller(j);
             let saved: [f64; PER_ROLLER] = std::array::from_fn(|i| y[o + i]);
             for k in 0..UNKNOWNS {
+                if (k == 0 && !cage.free) || (k >= SEAT && cage.seat_held) {
+                    continue;
+                }
                 let mut v = *uj;
                 v[k] += sc.perturb[k];
                 self.place(j, &v, g[0], y);
                 let rec = self.evaluate_one(inputs, &frame, y, j);
-                let r = self.roller_residual(j, y, &self.dy_roller, &v, omega_dot);
-                let base = &self.records[j];
+                let r = cage.mask(self.roller_residual(j, &self.dy_roller, &v, omega_dot));
                 self.block[j].set_column(k, &((r - self.residual[j]) / sc.perturb[k]));
-                let cage_column = Vector3::new(
-                    -(rec.m_cage - base.m_cage) / j_cage,
-                    -(rec.f_cage[1] - base.f_cage[1]) / m_cage,
-                    -(rec.f_cage[2] - base.f_cage[2]) / m_cage,
-                );
-                self.cage_rows[j].set_column(k, &(cage_column / sc.perturb[k]));
+                let rows = self.global_rows(&rec, &self.records[j], cage, sc.perturb[k]);
+                self.cage_rows[j].set_column(k, &rows);
             }
             y[o..o + PER_ROLLER].copy_from_slice(&saved);
             if !cage.free {
@@ -828,52 +1040,68 @@ impl QuasiDynamic {
                 self.block[j].row_mut(0).fill(0.0);
                 self.block[j].column_mut(0).fill(0.0);
                 self.block[j][(0, 0)] = 1.0;
-                self.cage_rows[j].fill(0.0);
+                self.cage_rows[j].column_mut(0).fill(0.0);
+            }
+            if cage.seat_held {
+                for k in SEAT..UNKNOWNS {
+                    self.block[j].column_mut(k).fill(0.0);
+                    self.block[j][(k, k)] = 1.0;
+                    self.cage_rows[j].column_mut(k).fill(0.0);
+                }
             }
         }
     }
 
-    /// The rollers' residuals' derivatives with respect to the cage's unknowns (into
-    /// `to_cage`), by forward differences of the whole right-hand side; returns the cage
-    /// equations' own derivatives.
+    /// The rollers' residuals' derivatives with respect to the free globals (into
+    /// `to_cage`), by forward differences of the whole right-hand side; returns the global
+    /// equations' own derivatives (held globals: their columns zero, their diagonal one) and
+    /// the right-hand sides spent.
     #[allow(clippy::too_many_arguments)]
     fn cage_coupling(
         &mut self,
         inputs: &Inputs,
         cage: &CageStep,
         u: &[[f64; UNKNOWNS]],
-        g: &[f64; CAGE_UNKNOWNS],
+        g: &[f64; GLOBALS],
         sc: &Scales,
-        cage_residual: &Vector3<f64>,
+        cage_residual: &Col,
         y: &[f64],
-    ) -> Matrix3<f64> {
-        let mut d_cage = Matrix3::zeros();
+    ) -> (Block, u64) {
+        let mut d_cage = Block::identity();
+        let mut spent = 0;
         let mut y1 = std::mem::take(&mut self.y_cage);
         let mut dy1 = std::mem::take(&mut self.dy_cage);
-        for k in 0..CAGE_UNKNOWNS {
+        for k in 0..GLOBALS {
+            if cage.held[k] {
+                for b in self.to_cage.iter_mut() {
+                    b.column_mut(k).fill(0.0);
+                }
+                continue;
+            }
             let mut g1 = *g;
             g1[k] += sc.perturb_cage[k];
             y1.copy_from_slice(y);
             self.place_all(cage, u, &g1, &mut y1);
             self.dynamic.rhs(inputs, &y1, &mut dy1);
+            spent += 1;
             let omega_dot = cage.acceleration(&g1)[0];
             for (j, uj) in u.iter().enumerate() {
                 let o = self.dynamic.c.layout.roller(j);
-                let r = self.roller_residual(j, &y1, &dy1[o..o + PER_ROLLER], uj, omega_dot);
+                let r = cage.mask(self.roller_residual(j, &dy1[o..o + PER_ROLLER], uj, omega_dot));
                 self.to_cage[j].set_column(k, &((r - self.residual[j]) / sc.perturb_cage[k]));
             }
             d_cage.set_column(k, &((cage.residual(&g1, &dy1) - cage_residual) / sc.perturb_cage[k]));
         }
         self.y_cage = y1;
         self.dy_cage = dy1;
-        d_cage
+        (d_cage, spent)
     }
 
-    /// The Newton correction of the rollers' unknowns and the cage's (into `correction` and
-    /// `cage_correction`) with the Jacobian held, the cage's eliminated by their Schur
+    /// The Newton correction of the rollers' unknowns and the globals (into `correction` and
+    /// `cage_correction`) with the Jacobian held, the globals eliminated by their Schur
     /// complement D - sum C_j A_j^-1 B_j; returns the largest correction relative to its
     /// limit, `None` where a matrix is singular.
-    fn newton_correction(&mut self, cage_residual: &Vector3<f64>, cage: &CageStep, sc: &Scales) -> Option<f64> {
+    fn newton_correction(&mut self, cage_residual: &Col, cage: &CageStep, sc: &Scales) -> Option<f64> {
         let (mut schur, mut rhs) = (self.d_cage, -cage_residual);
         for j in 0..self.residual.len() {
             let inv = regularised_inverse(&self.block[j])?;
@@ -882,32 +1110,29 @@ impl QuasiDynamic {
             schur -= self.cage_rows[j] * ab;
             rhs += self.cage_rows[j] * ar;
         }
-        for k in 0..CAGE_UNKNOWNS {
+        for k in 0..GLOBALS {
             if cage.held[k] {
                 schur.row_mut(k).fill(0.0);
                 schur[(k, k)] = 1.0;
                 rhs[k] = 0.0;
             }
         }
-        let mut dg = if cage.free {
-            regularised_inverse(&schur)? * rhs
+        let mut dg = if cage.held.iter().all(|&h| h) {
+            Col::zeros()
         } else {
-            Vector3::zeros()
+            regularised_inverse(&schur)? * rhs
         };
-        for k in 1..CAGE_UNKNOWNS {
-            dg[k] = dg[k].clamp(-sc.max_centre, sc.max_centre);
-        }
         let mut largest: f64 = 0.0;
-        for k in 0..CAGE_UNKNOWNS {
+        for k in 0..GLOBALS {
+            dg[k] = dg[k].clamp(-sc.max_step_cage[k], sc.max_step_cage[k]);
             largest = largest.max((dg[k] / sc.limit_cage[k]).abs());
         }
         self.cage_correction = dg;
         for j in 0..self.residual.len() {
             let (ar, ab) = &self.solved[j];
             let mut du = -(ar + ab * dg);
-            du[0] = du[0].clamp(-sc.max_pocket, sc.max_pocket);
-            du[1] = du[1].clamp(-sc.max_skew, sc.max_skew);
             for k in 0..UNKNOWNS {
+                du[k] = du[k].clamp(-sc.max_step[k], sc.max_step[k]);
                 largest = largest.max((du[k] / sc.limit[k]).abs());
             }
             self.correction[j] = du;
@@ -917,30 +1142,23 @@ impl QuasiDynamic {
 
     /// Broyden's update of the held Jacobian from the last evaluation to this one (unknowns
     /// `u`, `g`, the residuals just evaluated): each roller's block A_j takes the change of
-    /// its residual that its own step and the cage's (through B_j) leave unexplained, the
-    /// cage's D the change of its residual that the rollers' steps (through C_j) and its own
-    /// leave; each along its step in the scaled unknowns (the convergence limits: the least
-    /// change of the block in that norm, Broyden's good update). The chord iteration
-    /// converges superlinearly with it at no evaluation of its own.
-    fn secant_update(
-        &mut self,
-        u: &[[f64; UNKNOWNS]],
-        g: &[f64; CAGE_UNKNOWNS],
-        cage_residual: &Vector3<f64>,
-        cage: &CageStep,
-        sc: &Scales,
-    ) {
+    /// its residual that its own step and the globals' (through B_j) leave unexplained, the
+    /// globals' D the change of their residual that the rollers' steps (through C_j) and
+    /// their own leave; each along its step in the scaled unknowns (the convergence limits:
+    /// the least change of the block in that norm, Broyden's good update). The chord
+    /// iteration converges superlinearly with it at no evaluation of its own.
+    fn secant_update(&mut self, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], cage_residual: &Col, cage: &CageStep, sc: &Scales) {
         let Some((g0, rc0)) = self.evaluated_cage else {
             self.secant_base(u, g, cage_residual);
             return;
         };
-        let s_cage = Vector3::from_fn(|k, _| if cage.held[k] { 0.0 } else { g[k] - g0[k] });
+        let s_cage = Col::from_fn(|k, _| if cage.held[k] { 0.0 } else { g[k] - g0[k] });
         let mut unexplained_cage = cage_residual - rc0 - self.d_cage * s_cage;
         for (j, uj) in u.iter().enumerate() {
             let (u0, r0) = &self.evaluated[j];
-            let s = Vector3::from_fn(|k, _| uj[k] - u0[k]);
+            let s = Col::from_fn(|k, _| uj[k] - u0[k]);
             unexplained_cage -= self.cage_rows[j] * s;
-            let w = Vector3::from_fn(|k, _| s[k] / (sc.limit[k] * sc.limit[k]));
+            let w = Col::from_fn(|k, _| s[k] / (sc.limit[k] * sc.limit[k]));
             let ws = w.dot(&s);
             if ws > 0.0 && ws.is_finite() {
                 let y = self.residual[j] - r0 - self.to_cage[j] * s_cage;
@@ -950,21 +1168,19 @@ impl QuasiDynamic {
                 }
             }
         }
-        if cage.free {
-            let w = Vector3::from_fn(|k, _| s_cage[k] / (sc.limit_cage[k] * sc.limit_cage[k]));
-            let ws = w.dot(&s_cage);
-            if ws > 0.0 && ws.is_finite() {
-                let update = unexplained_cage * w.transpose() / ws;
-                if update.iter().all(|v| v.is_finite()) {
-                    self.d_cage += update;
-                }
+        let w = Col::from_fn(|k, _| s_cage[k] / (sc.limit_cage[k] * sc.limit_cage[k]));
+        let ws = w.dot(&s_cage);
+        if ws > 0.0 && ws.is_finite() {
+            let update = unexplained_cage * w.transpose() / ws;
+            if update.iter().all(|v| v.is_finite()) {
+                self.d_cage += update;
             }
         }
         self.secant_base(u, g, cage_residual);
     }
 
     /// Keep the unknowns and residuals just evaluated for the next secant update.
-    fn secant_base(&mut self, u: &[[f64; UNKNOWNS]], g: &[f64; CAGE_UNKNOWNS], cage_residual: &Vector3<f64>) {
+    fn secant_base(&mut self, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], cage_residual: &Col) {
         for (e, (uj, rj)) in self.evaluated.iter_mut().zip(u.iter().zip(&self.residual)) {
             *e = (*uj, *rj);
         }
@@ -979,8 +1195,8 @@ impl QuasiDynamic {
     }
 
     /// Apply the share `lambda` of the last Newton correction to `u` and `g`.
-    fn apply_correction(&self, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; CAGE_UNKNOWNS], lambda: f64) {
-        for k in 0..CAGE_UNKNOWNS {
+    fn apply_correction(&self, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; GLOBALS], lambda: f64) {
+        for k in 0..GLOBALS {
             g[k] += lambda * self.cage_correction[k];
         }
         for (uj, du) in u.iter_mut().zip(&self.correction) {
@@ -1022,7 +1238,7 @@ impl QuasiDynamic {
 
     /// Put `state` on the seat `x` at `cage_angle` without solving the balance (a start from
     /// rest keeps its speeds).
-    pub fn hold(&self, state: &mut DynamicState, x: &[f64], cage_angle: f64) {
+    pub fn hold(&mut self, state: &mut DynamicState, x: &[f64], cage_angle: f64) {
         let mut y = state.y.clone();
         self.seat(x, cage_angle, &mut y);
         state.y = y;
@@ -1051,12 +1267,12 @@ impl QuasiDynamic {
 /// The inverse of a roller's block; where it is singular (a roller that touches nothing has
 /// no skew or pocket stiffness), with its diagonal raised by 1e-9 of its largest entry (the
 /// Jacobian is regularised, never the residual, so a converged balance is exact).
-fn regularised_inverse(m: &Matrix3<f64>) -> Option<Matrix3<f64>> {
+fn regularised_inverse(m: &Block) -> Option<Block> {
     if let Some(inv) = m.try_inverse().filter(|i| i.iter().all(|v| v.is_finite())) {
         return Some(inv);
     }
     let scale = m.amax().max(1e-300);
-    (m + Matrix3::identity() * (1e-9 * scale))
+    (m + Block::identity() * (1e-9 * scale))
         .try_inverse()
         .filter(|i| i.iter().all(|v| v.is_finite()))
 }
