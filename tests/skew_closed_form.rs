@@ -225,6 +225,19 @@ fn the_skew_does_not_follow_the_load() {
     }
 }
 
+/// The product's own closed form (`Geometry::rib_skew`, which the docs' tables use) is the
+/// one written out here from the bearing file.
+#[test]
+fn the_geometrys_closed_form_is_the_files() {
+    for k in RATIOS {
+        let (b, file) = bearing(k);
+        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let own = g.rib_skew(b.roller_end_radius, 0.1).expect("a rib");
+        let here = Rib::of(&file).skew(0.1);
+        assert!((own / here - 1.0).abs() < 1e-9, "R_s/rho_p {k}: {own} against {here}");
+    }
+}
+
 /// `flange.mu` is the rib's Coulomb coefficient at fidelity 0 too: the rib's friction torque
 /// is proportional to it (the quasi-static rib load does not depend on friction), and it is
 /// refused outside [-1, 2].
