@@ -166,9 +166,15 @@ pub struct RollersFile {
     /// Half-cone angle; if absent, (cup angle - cone angle)/2.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub half_cone_angle_deg: Option<f64>,
-    /// Radius of the spherical large end; if absent, the roller's apex distance.
+    /// Radius R_s of the spherical large end. Give it, or `end_radius_ratio`, or neither
+    /// (then R_s = 0.9 of the rib's circumferential radius of curvature rho_p).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub end_radius_mm: Option<f64>,
+    /// The end radius as the ratio R_s / rho_p to the rib's circumferential radius of curvature
+    /// rho_p = r_f / cos(flange contact angle), in (0, 1.05]; designs use 0.75-0.95. Instead of
+    /// `end_radius_mm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_radius_ratio: Option<f64>,
     #[serde(default)]
     pub crown_drop_um: f64,
 }
@@ -612,6 +618,22 @@ fn material(field: &str, m: &MaterialFile) -> Result<Material, BearingError> {
 }
 
 const MM: f64 = 1e-3;
+
+/// Roller end radius over the rib's circumferential radius of curvature, R_s / rho_p, where
+/// the bearing file gives neither `rollers.end_radius_mm` nor `rollers.end_radius_ratio`.
+/// Makers grind the roller's large end flatter than the rib's circumferential curvature so
+/// that the contact stays on the end face and the rib contact is non-conformal. "Effects of
+/// Roller End/Rib Curvature Ratio on Friction and Accuracy in Tapered Roller Bearings"
+/// (Machines 13 (2025) 910, doi:10.3390/machines13100910) compares 0.85, 0.90 and
+/// 0.95 rho_p and finds 0.85 the least friction, 0.95 the best running accuracy and 0.90 the
+/// compromise. 0.9 is that compromise, an engineering choice where a maker gives no value.
+/// The ratio also sets the roller's skew (docs/dynamic.md, "The roller skew mode").
+pub const DEFAULT_END_RADIUS_RATIO: f64 = 0.9;
+
+/// Largest accepted R_s / rho_p: above 1 the sphere touches the rib at its edges; 32018X's
+/// published ratio is 1.0003 ([D19]), so a few per cent above 1 are read as conformal.
+pub const MAX_END_RADIUS_RATIO: f64 = 1.05;
+
 /// The bulk oil temperatures the viscosity-temperature law is used over (degC): Walther's
 /// equation holds for mineral and ester oils from their pour point to about 150 degC; the
 /// range admits -40..200 degC and refuses beyond.
@@ -1203,22 +1225,45 @@ impl BearingFile {
         // normal n_f = (sin af, -cos af), sphere centre on the roller axis at rs from the end):
         // r_f = dm/2 + (l/2) sin(axis) + rs (cos af - sin(axis)).
         let rib_radius = |af: f64, rs: f64| 0.5 * dm + 0.5 * length * libm::sin(axis) + rs * (libm::cos(af) - libm::sin(axis));
+        if r.end_radius_mm.is_some() && r.end_radius_ratio.is_some() {
+            return Err(err(
+                "rollers.end_radius_ratio",
+                "give at most one of end_radius_mm and end_radius_ratio",
+            ));
+        }
+        let ratio = match r.end_radius_ratio {
+            Some(k) => {
+                let k = in_range("rollers.end_radius_ratio", k, 0.0, MAX_END_RADIUS_RATIO)?;
+                if k <= 0.0 {
+                    return Err(err("rollers.end_radius_ratio", "must be positive"));
+                }
+                k
+            }
+            None => DEFAULT_END_RADIUS_RATIO,
+        };
         let end_radius = match (flange_angle, r.end_radius_mm) {
             (None, _) => 0.0,
             (Some(_), Some(rs)) => positive("rollers.end_radius_mm", rs)? * MM,
             (Some(af), None) => {
-                // Default: R_s = 0.9 of the rib's circumferential radius of curvature
-                // rho_p = r_f / cos(af), the middle of the 0.85 .. 0.95 rho_p design range.
-                // r_f is linear in R_s, so R_s = 0.9 r_f(R_s) / cos(af) is solved directly.
-                let c = 0.9 / libm::cos(af);
+                // R_s = k rho_p with rho_p = r_f / cos(af) the rib's circumferential radius
+                // of curvature (k given, or `DEFAULT_END_RADIUS_RATIO`). r_f is linear in R_s,
+                // so R_s = k r_f(R_s) / cos(af) is solved directly.
+                let c = ratio / libm::cos(af);
                 let r0 = rib_radius(af, 0.0);
                 let slope = libm::cos(af) - libm::sin(axis);
-                c * r0 / (1.0 - c * slope)
+                let rs = c * r0 / (1.0 - c * slope);
+                if !(rs.is_finite() && rs > 0.0) {
+                    return Err(err(
+                        "rollers.end_radius_ratio",
+                        format!("{ratio} gives no end radius on this rib (R_s = {rs:e} m)"),
+                    ));
+                }
+                rs
             }
         };
         if let Some(af) = flange_angle {
             let rho_p = rib_radius(af, end_radius) / libm::cos(af);
-            if end_radius > 1.05 * rho_p {
+            if end_radius > MAX_END_RADIUS_RATIO * rho_p {
                 return Err(err(
                     "rollers.end_radius_mm",
                     format!(
@@ -1334,6 +1379,53 @@ mod tests {
 
     fn error_of(v: serde_json::Value) -> BearingError {
         Bearing::from_json(&v.to_string()).expect_err("must be rejected")
+    }
+
+    fn preset_text(name: &str) -> &'static str {
+        PRESETS.iter().find(|(n, _)| *n == name).expect("a preset").1
+    }
+
+    /// R_s / rho_p of a loaded bearing, rho_p = r_f / cos(a_f) from the geometry's rib contact.
+    fn end_radius_over_rib(b: &Bearing) -> f64 {
+        let g = crate::geometry::Geometry::new(b, &crate::model::Parameters::from_bearing(b));
+        let f = g.flange.as_ref().expect("a rib");
+        b.roller_end_radius / (f.rib_radius / libm::cos(b.flange_angle.unwrap()))
+    }
+
+    #[test]
+    fn the_end_radius_follows_its_ratio_to_the_rib() {
+        // 32008 gives neither: the default ratio
+        let b = Bearing::preset("32008").unwrap();
+        assert!((end_radius_over_rib(&b) - DEFAULT_END_RADIUS_RATIO).abs() < 1e-12);
+        let mut v: serde_json::Value = serde_json::from_str(preset_text("32008")).unwrap();
+        let mut last = 0.0;
+        for k in [0.75, 0.85, 0.9, 0.95] {
+            v["rollers"]["end_radius_ratio"] = serde_json::json!(k);
+            let b = Bearing::from_json(&v.to_string()).unwrap();
+            assert!((end_radius_over_rib(&b) - k).abs() < 1e-12, "{k}");
+            assert!(b.roller_end_radius > last);
+            last = b.roller_end_radius;
+            if k == 0.9 {
+                let d = Bearing::preset("32008").unwrap();
+                assert_eq!(b.roller_end_radius.to_bits(), d.roller_end_radius.to_bits());
+            }
+        }
+    }
+
+    #[test]
+    fn the_end_radius_is_given_once_and_in_range() {
+        let mut v: serde_json::Value = serde_json::from_str(preset_text("32008")).unwrap();
+        v["rollers"]["end_radius_ratio"] = serde_json::json!(0.8);
+        v["rollers"]["end_radius_mm"] = serde_json::json!(100.0);
+        let e = error_of(v.clone());
+        assert_eq!(e.field, "rollers.end_radius_ratio", "{e}");
+        assert!(e.to_string().contains("at most one"), "{e}");
+        v["rollers"].as_object_mut().unwrap().remove("end_radius_mm");
+        for bad in [0.0, -0.5, 1.2] {
+            v["rollers"]["end_radius_ratio"] = serde_json::json!(bad);
+            let e = error_of(v.clone());
+            assert_eq!(e.field, "rollers.end_radius_ratio", "{bad}: {e}");
+        }
     }
 
     #[test]

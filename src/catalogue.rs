@@ -30,9 +30,16 @@
 //! 6. One apex (the rollers roll without sliding along the line): the roller's half-cone angle
 //!    a_h from tan a_h = (D_we / 2) sin a_r / (D_pw / 2) with the roller axis angle
 //!    a_r = α − a_h, and the cone angle a_r − a_h.
-//! 7. Roller end sphere radius R_s = 0.9 of the roller's apex distance (D_pw / 2) / sin a_r,
-//!    the middle of the 0.85–0.95 of the designs (ISO 355 bearings' spherical ends are a
-//!    little flatter than the apex sphere, so the rib contact stays on the end face).
+//! 7. Roller end sphere radius R_s = 0.9 of the roller's apex distance (D_pw / 2) / sin a_r
+//!    (the spherical end a little flatter than the apex sphere, so the rib contact stays on
+//!    the end face). With the rib of rule 8 this gives R_s / rho_p ≈ 0.84 against the rib's
+//!    circumferential radius of curvature rho_p (30206, 4T-32008X, 4T-32010X of
+//!    `examples/bearings/`), at the low-friction end of the 0.85–0.95 rho_p that "Effects of
+//!    Roller End/Rib Curvature Ratio on Friction and Accuracy in Tapered Roller Bearings"
+//!    (Machines 13 (2025) 910, doi:10.3390/machines13100910) compares. Makers do not publish
+//!    their ratio: the 0.9 is an engineering assumption, and the ratio sets the roller's skew
+//!    (docs/dynamic.md, "The roller skew mode"): in the written file, `rollers.end_radius_ratio`
+//!    in place of `rollers.end_radius_mm` sets another.
 //! 8. Rib contact: at 0.6 of the large-end radius below the roller axis, i.e. 0.4 of that
 //!    radius above the cone raceway: clear of the raceway's relief groove and of the end
 //!    face's chamfer, low enough that the rib stays under half the roller diameter tall. The
@@ -67,7 +74,8 @@ pub const CAGE_BAR_OVER_ROLLER: f64 = 0.13;
 /// than about its diameter tips in its pocket and skews freely; catalogue bearings' rollers
 /// are 1.2–2.5 diameters long ([L22]'s 32008: 2.1, [D19]'s 32018 X: 1.7).
 pub const MIN_LENGTH_OVER_DIAMETER: f64 = 0.8;
-/// Roller end sphere radius over the roller's apex distance (rule 7).
+/// Roller end sphere radius over the roller's apex distance (rule 7: an engineering
+/// assumption, R_s / rho_p ≈ 0.84 with rule 8's rib).
 pub const END_RADIUS_OVER_APEX: f64 = 0.9;
 /// Rib contact depth below the roller axis over the large-end radius (rule 8).
 pub const RIB_CONTACT_DEPTH: f64 = 0.6;
@@ -601,6 +609,7 @@ impl Estimate {
                 small_end_diameter_mm: None,
                 half_cone_angle_deg: Some(deg(self.half_cone_angle_deg)),
                 end_radius_mm: Some(mm(self.end_radius_mm)),
+                end_radius_ratio: None,
                 crown_drop_um: round_to(self.crown_drop_um, 0.1),
             }),
             pitch_diameter_mm: Some(mm(self.pitch_diameter_mm)),

@@ -147,6 +147,23 @@ impl Geometry {
         })
     }
 
+    /// The rib's closed form of the roller's equilibrium skew (rad) with Coulomb friction
+    /// `mu_f` at the rib and an end sphere of radius `end_radius` (docs/dynamic.md, "The roller
+    /// skew mode"): phi = mu_f L_f e / (d (n_a e + d)), with d = R_s - l/2 the sphere centre
+    /// from the middle of the roller, e = rho_p - R_s the sphere centre from the point where
+    /// the rib normal meets the bearing axis (rho_p the rib's circumferential radius of
+    /// curvature), n_a the cosine of the normal's angle to the roller axis and
+    /// L_f = l/2 - R_s (1 - n_a) the contact's lever along the roller axis. `None` without a
+    /// rib, or where the sphere reaches the axis point (e <= 0: a conformal rib).
+    pub fn rib_skew(&self, end_radius: f64, mu_f: f64) -> Option<f64> {
+        let f = self.flange.as_ref()?;
+        let n_a = f.normal[0] * self.axis[0] + f.normal[1] * self.axis[1];
+        let rho_p = f.rib_radius / -f.normal[1];
+        let (e, d) = (rho_p - end_radius, end_radius - 0.5 * self.length);
+        let lever = 0.5 * self.length - end_radius * (1.0 - n_a);
+        (e > 0.0 && d > 0.0).then(|| mu_f * lever * e / (d * (n_a * e + d)))
+    }
+
     /// The largest Hertz pressure (Pa) over the raceway slices whose loads `slice_loads` holds,
     /// per roller the cone's slices then the cup's (the layout of both models' slice loads).
     pub fn max_raceway_pressure(&self, slice_loads: &[f64]) -> f64 {

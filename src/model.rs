@@ -74,6 +74,9 @@ pub struct Parameters {
     pub cage_angle0: f64,
     pub crown_drop: f64,
     pub flange_mu0: f64,
+    /// Coulomb friction coefficient of the rib contact at every fidelity, in place of the rib's
+    /// lubricated law (or of `mu` when dry); negative (the default): that law.
+    pub flange_mu: f64,
     pub gyroscopic: bool,
     pub centrifugal: bool,
     /// Full-film traction law (and with it the film and rib laws it belongs to).
@@ -194,6 +197,16 @@ pub fn step_work_budget(rate: f64, h: f64) -> u64 {
 }
 
 impl Parameters {
+    /// The rib's Coulomb coefficient where the rib takes Coulomb friction: `flange.mu` where
+    /// set (not negative), `mu` otherwise (dry contacts, the [D19] skew model).
+    pub fn rib_mu(&self) -> f64 {
+        if self.flange_mu >= 0.0 {
+            self.flange_mu
+        } else {
+            self.mu
+        }
+    }
+
     /// The oil's viscosity against its bulk temperature.
     pub fn oil_grade(&self) -> crate::tribology::OilGrade {
         crate::tribology::OilGrade::new(self.oil_nu40, self.oil_nu100, self.oil_density)
@@ -304,6 +317,7 @@ impl Parameters {
             cage_angle0: 0.0,
             crown_drop: b.crown_drop,
             flange_mu0: b.flange_mu0,
+            flange_mu: -1.0,
             gyroscopic: true,
             centrifugal: true,
             traction: TractionLaw::ThermalEyring,
@@ -448,6 +462,15 @@ impl Parameters {
         }
         if !(self.flange_mu0.is_finite() && (0.0..=2.0).contains(&self.flange_mu0)) {
             return bad("flange.mu0", format!("must be in [0, 2], got {}", self.flange_mu0));
+        }
+        if !(self.flange_mu.is_finite() && (-1.0..=2.0).contains(&self.flange_mu)) {
+            return bad(
+                "flange.mu",
+                format!(
+                    "must be in [0, 2], or negative down to -1 for the rib's lubricated law, got {}",
+                    self.flange_mu
+                ),
+            );
         }
         for (j, dd) in self.roller_dd.iter().enumerate() {
             if !(dd.is_finite() && dd.abs() <= 0.01 * d) {

@@ -105,6 +105,8 @@ pub(crate) struct Constants {
     sigma: f64,
     mu: f64,
     flange_mu0: f64,
+    /// Coulomb coefficient of the rib contact (`flange.mu`); `None`: the rib's own law.
+    rib_coulomb: Option<f64>,
     dry: bool,
     gyroscopic: bool,
     centrifugal: bool,
@@ -282,6 +284,7 @@ impl Constants {
             sigma: p.roughness,
             mu: p.mu,
             flange_mu0: p.flange_mu0,
+            rib_coulomb: (p.flange_mu >= 0.0).then_some(p.flange_mu),
             dry: p.lubrication == Lubrication::Dry,
             gyroscopic: p.gyroscopic,
             centrifugal: p.centrifugal,
@@ -1196,7 +1199,10 @@ fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w
             let v_t = v_rel - n * vn;
             let vs = v_t.norm();
             let (f_t, p_t) = if vs > 0.0 {
-                let coef = if c.dry {
+                let coef = if let Some(mu_f) = c.rib_coulomb {
+                    // `flange.mu`: Coulomb friction at the rib whatever the raceways' law
+                    mu_f * q / (vs * vs + V_EPS * V_EPS).sqrt()
+                } else if c.dry {
                     c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
                 } else {
                     let v_point = V3::x().cross(&pk) * psid;

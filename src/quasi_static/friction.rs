@@ -211,6 +211,8 @@ pub struct FrictionModel {
     sigma: f64,
     mu: f64,
     flange_mu0: f64,
+    /// Coulomb coefficient of the rib contact (`flange.mu`); `None`: the rib's own law.
+    rib_coulomb: Option<f64>,
     /// Full-film traction law; for law 0 the lubricated contact laws' data.
     traction: tr::TractionLaw,
     lubricant: tr::Lubricant,
@@ -279,6 +281,7 @@ impl FrictionModel {
             sigma: p.roughness,
             mu: p.mu,
             flange_mu0: p.flange_mu0,
+            rib_coulomb: (p.flange_mu >= 0.0).then_some(p.flange_mu),
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
             supply: p.supply_law(b),
@@ -832,9 +835,11 @@ impl FrictionModel {
             if let (Some(f), true) = (&g.flange, qf > 0.0) {
                 let kin = self.flange;
                 let v_s = speed * kin.slide;
-                let f_total = match lubrication {
-                    Lubrication::Dry => tr::dry_mu(self.mu, v_s).abs() * qf,
-                    Lubrication::Ehl => {
+                let f_total = match (self.rib_coulomb, lubrication) {
+                    // `flange.mu`: Coulomb friction at the rib whatever the raceways' law
+                    (Some(mu_f), _) => tr::dry_mu(mu_f, v_s).abs() * qf,
+                    (None, Lubrication::Dry) => tr::dry_mu(self.mu, v_s).abs() * qf,
+                    (None, Lubrication::Ehl) => {
                         let u_e = speed.abs() * kin.entrain;
                         // the contact ellipse and film at this load (not needed where the
                         // table serves the friction force)

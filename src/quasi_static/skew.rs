@@ -11,7 +11,8 @@
 //!   plane, i.e. (s phi)^2 / (2 r_c) further from the bearing axis, which adds
 //!   cos(a_o) (s phi)^2 / (2 r_c) to the cup interference and removes cos(a_i) (s phi)^2 / (2 r_c)
 //!   from the cone's (moment -sum q d delta / d phi);
-//! - flange: Coulomb traction mu Q_f at the rib contact (station s_f), and the normal force,
+//! - flange: Coulomb traction mu Q_f at the rib contact (station s_f; `flange.mu` where set),
+//!   and the normal force,
 //!   which acts through the end-sphere centre (station s_c = R_s - l/2): skewed, the sphere
 //!   centre moves s_c phi sideways, a restoring moment -Q_f s_c sin(a_f + a_r) phi;
 //! - cage: the roller touches its pocket at two diagonal corners when |phi| reaches
@@ -267,6 +268,7 @@ impl QuasiStatic {
         let st = &self.setup[j];
         let ls = self.ls;
         let mu = self.params.mu;
+        let mu_rib = self.params.rib_mu();
         let theta = q[2] / ls;
         let (phi, f_c) = sk.split(q[3] / ls);
         let phi2 = phi * phi;
@@ -359,7 +361,7 @@ impl QuasiStatic {
                 e.m_cone -= qf * self.flange_chi;
                 e.qf = qf;
                 e.nft = qf * f.lever;
-                e.nfs = sk.flange_s * qf * dry_mu(mu, speed * sk.flange_slide) - qf * sk.flange_lever(phi);
+                e.nfs = sk.flange_s * qf * dry_mu(mu_rib, speed * sk.flange_slide) - qf * sk.flange_lever(phi);
             }
         }
 
@@ -774,6 +776,7 @@ impl QuasiStatic {
         // The rolling and sliding speeds follow the cone's speed relative to the cup.
         let speed = inputs.relative_speed();
         let mu = self.params.mu;
+        let mu_rib = self.params.rib_mu();
         let (mut my, mut mz, mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut h_race, mut h_flange, mut h_cage) = (0.0, 0.0, 0.0);
         let (mut m_cone, mut m_cup) = (0.0, 0.0);
@@ -832,7 +835,7 @@ impl QuasiStatic {
             }
             if e.qf > 0.0 {
                 let v_f = speed * sk.flange_slide;
-                let f = dry_mu(mu, v_f) * e.qf;
+                let f = dry_mu(mu_rib, v_f) * e.qf;
                 h_flange += f * v_f;
                 m_cone -= f * sk.rib_radius;
                 sliding += f.abs();

@@ -335,5 +335,65 @@ pub(super) fn section(plan: &Plan, ledger: &mut Ledger) -> Result<String, CliErr
     md += "\nNo mixed law gives the rib more friction than its boundary coefficient. With the rib's whole load in \
            boundary friction, a copy of the model reaches a mean skew of 0.040–0.044° at 500 and 3000 rpm, 2 and 8 kN \
            (docs/validation-notes.md, 'Lubricant supply').\n\n";
+    md += &end_radius_table(plan)?;
+    Ok(md)
+}
+
+/// The end radii of the table below (R_s / rho_p) and its operating points (rpm, Fa).
+const END_RADIUS_RATIOS: [f64; 5] = [0.75, 0.8, 0.85, 0.9, 0.95];
+const END_RADIUS_POINTS: [(f64, f64); 4] = [(500.0, 2e3), (500.0, 8e3), (3000.0, 2e3), (3000.0, 8e3)];
+
+/// The greased 32008's mean skew against its roller end radius R_s / rho_p
+/// (`rollers.end_radius_ratio`), which sets the rib's restoring stiffness, beside the rib's
+/// closed form at Coulomb coefficients 0.1 and 0.15 (`Geometry::rib_skew`) and the measured
+/// range. The runs are the axial ones above (grease, the film-ratio law, fidelity 1 from the
+/// steady start).
+fn end_radius_table(plan: &Plan) -> Result<String, CliError> {
+    let ratios = if plan.quick {
+        vec![END_RADIUS_RATIOS[0], END_RADIUS_RATIOS[4]]
+    } else {
+        END_RADIUS_RATIOS.to_vec()
+    };
+    let duration = if plan.quick { 0.01 } else { 0.02 };
+    let text = trb::bearing::PRESETS
+        .iter()
+        .find(|(n, _)| *n == PRESET)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| CliError::failed(format!("no preset {PRESET}")))?;
+    let mut head = vec!["R_s / ρ_p".to_string(), "R_s (mm)".to_string()];
+    head.extend(
+        END_RADIUS_POINTS
+            .iter()
+            .map(|(n, fa)| format!("{} rpm, {} kN", num(*n), num(fa * 1e-3))),
+    );
+    head.extend(["closed form, μ_f 0.1 / 0.15 (°)".to_string(), "measured (°)".to_string()]);
+    let mut rows = Vec::new();
+    for k in ratios {
+        let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
+        v["rollers"]["end_radius_ratio"] = serde_json::json!(k);
+        let b = Bearing::from_json(&v.to_string()).map_err(|e| CliError::failed(format!("{PRESET}, R_s/rho_p {k}: {e}")))?;
+        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let closed = |mu: f64| g.rib_skew(b.roller_end_radius, mu).map_or("—".to_string(), |p| num(p.to_degrees()));
+        let mut row = vec![format!("{k:.2}"), num(b.roller_end_radius * 1e3)];
+        for &(rpm, fa) in &END_RADIUS_POINTS {
+            row.push(num(point(&b, 1, 0, rpm, fa, 0.0, duration)?.skew.0));
+        }
+        row.push(format!("{} / {}", closed(0.1), closed(0.15)));
+        row.push(format!("{}–{}", MEASURED.0, MEASURED.1));
+        rows.push(row);
+    }
+    let head: Vec<&str> = head.iter().map(|h| h.as_str()).collect();
+    let mut md = format!(
+        "### The roller end radius (grease)\n\n\
+         The 32008 greased (`supply` 2, the film-ratio law), its roller end radius set by `rollers.end_radius_ratio` \
+         (the preset's own is 0.9): `skew.mean` at fidelity 1, {:.0} ms after the steady start, under pure axial load. \
+         The rib's normal force restores the skew with Q_f d (n_a + d / e), d the end-sphere centre's distance from \
+         the middle of the roller and e = ρ_p − R_s its distance from where the rib normal meets the bearing axis; \
+         the closed form is the equilibrium skew with the rib in Coulomb friction μ_f (`flange.mu`; docs/dynamic.md, \
+         'The roller skew mode'). A flatter end (smaller R_s / ρ_p) lengthens e and weakens the pendulum term.\n\n",
+        duration * 1e3
+    );
+    md += &table(&head, &rows);
+    md += "\n";
     Ok(md)
 }
