@@ -208,18 +208,20 @@ fn the_skew_meets_the_ribs_closed_form_at_both_dynamic_fidelities() {
     }
 }
 
-/// The equilibrium skew is set by the rib's geometry and friction, not by the load: at
-/// fidelity 2, Fa 2 and 8 kN (the rib load 30-160 N) give the closed form's skew within 25 %
-/// at mu_f = 0.1 (measured 2026-12-03: 0.99-1.21 of it; the raceways' own drive, which grows
-/// with the load, takes R_s/rho_p = 0.95 at 8 kN to the top of that range).
+/// The rib's share of the equilibrium skew is set by its geometry and friction, not by the
+/// load: at fidelity 2, Fa 2 and 8 kN (the rib load 30-160 N), the skew at mu_f = 0.1 less the
+/// skew with a frictionless rib (the raceways' own traction drive, which the closed form leaves
+/// out and which grows with the load: up to 0.03 deg at 8 kN, more than the closed form's
+/// 0.018 deg at R_s/rho_p = 0.95) is the closed form's within 25 % (measured 2026-12-03: 0.99-1.00 of
+/// it at 2 kN, 0.79-0.85 at 8 kN, where the rib load has grown and the skew is no longer a sum).
 #[test]
-fn the_skew_does_not_follow_the_load() {
+fn the_ribs_share_of_the_skew_does_not_follow_the_load() {
     for k in RATIOS {
         let rib = Rib::of(&bearing(k).1);
         for fa in [2000.0, 8000.0] {
-            let q = quasi_dynamic(k, fa, 0.1);
-            let ratio = q / rib.skew(0.1);
-            println!("R_s/rho_p {k}, Fa {fa} N: fidelity 2 at {ratio:.3} of the closed form");
+            let share = quasi_dynamic(k, fa, 0.1) - quasi_dynamic(k, fa, 0.0);
+            let ratio = share / rib.skew(0.1);
+            println!("R_s/rho_p {k}, Fa {fa} N: the rib's share at fidelity 2 at {ratio:.3} of the closed form");
             assert!((ratio - 1.0).abs() < 0.25, "R_s/rho_p {k}, Fa {fa} N: {ratio}");
         }
     }
