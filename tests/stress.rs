@@ -148,7 +148,6 @@ const KNOWN_2: &[(&str, &str)] = &[
     ("32008/transient/sudden stop from n_lim", "did not converge"),
     ("32008/transient/reversal +n_lim to -n_lim", "did not converge"),
     // a tenfold speed step within one step (F17b)
-    ("TRB130x230/transient/speed step 0.1 to 1 n_lim", "did not converge"),
     ("32008/transient/speed step 0.1 to 1 n_lim", "did not converge"),
     // 32018X, 26 rollers at 60 rpm, with a load zone or changing inputs: the balance fails from its first step, mostly with corrections of 1e4 to 1e7 times their limits (F17c)
     ("32018X/load-radial-held/0.3C0", "did not converge"),
@@ -195,9 +194,7 @@ const KNOWN_2: &[(&str, &str)] = &[
         "did not converge",
     ),
     ("32018X/parameters/dry, mu = 2", "did not converge"),
-    ("32018X/parameters/oil.eta0 = 1e-4 Pa s", "did not converge"),
     ("32018X/parameters/oil.eta0 = 100 Pa s", "did not converge"),
-    ("32018X/parameters/oil.alpha = 0", "did not converge"),
     ("32018X/parameters/oil.alpha = 1e-7", "did not converge"),
     ("32018X/parameters/cageSlipRate = 0", "did not converge"),
     ("32018X/parameters/cageSlipRate = 1", "did not converge"),
@@ -208,34 +205,22 @@ const KNOWN_2: &[(&str, &str)] = &[
     ("32018X/parameters/roller[2].dD = -1 % D", "did not converge"),
     ("32018X/parameters/no centrifugal, no gyroscopic", "did not converge"),
     ("32018X/parameters/cage.angle0 = 1e6 rad", "did not converge"),
+    ("32018X/dynamic/startSteady = false, 0.1 C0 combined", "did not converge"),
     // long communication steps (0.01 and 0.1 s) under a moving load zone (F17d)
     ("TRB130x230/step-size/h = 1e-1 s", "did not converge"),
     ("32008/step-size/h = 1e-2 s", "did not converge"),
     ("32008/step-size/h = 1e-1 s", "did not converge"),
     // 32008 at constant inputs under a load zone: refused after 16 to 29 good steps of 1 ms (F17e)
-    ("32008/long/0.05 s, h = 1 ms, constant", "did not converge"),
     ("32008/dynamic/energy balance, 0.1 C0 combined, constant", "did not converge"),
-    ("32008/dynamic/energy balance, 0.3 C0 combined, xi 0.05 deg", "did not converge"),
-    (
-        "32008/dynamic/pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)",
-        "did not converge",
-    ),
     // parameters at the ends of their ranges: dry friction with mu = 2, extreme viscosities, a pressure-viscosity coefficient of 0, a 5 % D crown (F17f)
     ("TRB130x230/parameters/dry, mu = 2", "did not converge"),
     ("32008/parameters/dry, mu = 2", "did not converge"),
-    ("32008/parameters/oil.eta0 = 1e-4 Pa s", "did not converge"),
     ("32008/parameters/oil.eta0 = 100 Pa s", "did not converge"),
-    ("32008/parameters/oil.alpha = 0", "did not converge"),
     ("32008/parameters/crownDrop = 5 % D", "did not converge"),
     // CRB-TRILOBE at 40 000 rpm with a deflected shaft: refused at its second step (F17g)
-    ("CRB-TRILOBE/deflection/xi 0.01 deg", "did not converge"),
     ("CRB-TRILOBE/deflection/xi 0.05 deg", "did not converge"),
-    ("CRB-TRILOBE/deflection/zeta -0.05 deg", "did not converge"),
-    // the mean reaction.Fx misses Fx by 3.4 %: the in-plane seat leaves out the raceway tractions' axial share (F18)
-    (
-        "TRB130x230/dynamic/energy balance, 0.3 C0 combined, xi 0.05 deg",
-        "mean reaction.Fx",
-    ),
+    // steps whose balance converges only on the held quasi-static seat (warning SeatHeld): the mean reaction.Fx misses Fx by 3.2 % (F18)
+    ("32008/dynamic/energy balance, 0.3 C0 combined, xi 0.05 deg", "mean reaction.Fx"),
 ];
 
 /// The CI subset of the quick fidelity-2 list: every case of the three tapered presets
