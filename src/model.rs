@@ -197,14 +197,16 @@ pub fn step_work_budget(rate: f64, h: f64) -> u64 {
 }
 
 impl Parameters {
+    /// `flange.mu` where set (not negative): the rib's Coulomb coefficient whatever the
+    /// raceways' law; `None`: the rib takes the contacts' own law.
+    pub fn rib_coulomb(&self) -> Option<f64> {
+        (self.flange_mu >= 0.0).then_some(self.flange_mu)
+    }
+
     /// The rib's Coulomb coefficient where the rib takes Coulomb friction: `flange.mu` where
-    /// set (not negative), `mu` otherwise (dry contacts, the [D19] skew model).
+    /// set, `mu` otherwise (dry contacts, the [D19] skew model).
     pub fn rib_mu(&self) -> f64 {
-        if self.flange_mu >= 0.0 {
-            self.flange_mu
-        } else {
-            self.mu
-        }
+        self.rib_coulomb().unwrap_or(self.mu)
     }
 
     /// The oil's viscosity against its bulk temperature.

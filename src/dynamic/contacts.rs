@@ -284,7 +284,7 @@ impl Constants {
             sigma: p.roughness,
             mu: p.mu,
             flange_mu0: p.flange_mu0,
-            rib_coulomb: (p.flange_mu >= 0.0).then_some(p.flange_mu),
+            rib_coulomb: p.rib_coulomb(),
             dry: p.lubrication == Lubrication::Dry,
             gyroscopic: p.gyroscopic,
             centrifugal: p.centrifugal,
@@ -1199,11 +1199,9 @@ fn flange_contact(c: &Constants, f: &Frame, inputs: &Inputs, pos: V3, vel: V3, w
             let v_t = v_rel - n * vn;
             let vs = v_t.norm();
             let (f_t, p_t) = if vs > 0.0 {
-                let coef = if let Some(mu_f) = c.rib_coulomb {
-                    // `flange.mu`: Coulomb friction at the rib whatever the raceways' law
+                // Coulomb friction: `flange.mu` whatever the raceways' law, or dry contacts' `mu`
+                let coef = if let Some(mu_f) = c.rib_coulomb.or(c.dry.then_some(c.mu)) {
                     mu_f * q / (vs * vs + V_EPS * V_EPS).sqrt()
-                } else if c.dry {
-                    c.mu * q / (vs * vs + V_EPS * V_EPS).sqrt()
                 } else {
                     let v_point = V3::x().cross(&pk) * psid;
                     let ue_vec = (v_roller - v_point + v_ring - v_point) * 0.5;

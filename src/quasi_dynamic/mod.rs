@@ -938,23 +938,17 @@ impl QuasiDynamic {
         let g = [cage3[0], cage3[1], cage3[2], y[CONE], y[CONE + 1], y[CONE + 2]];
         self.cage_start = start;
         let steady = !h.is_finite();
-        let cage = CageStep {
+        let mut cage = CageStep {
             start,
             velocity: if free { [state.y[CAGE + 3], state.y[CAGE + 4]] } else { [0.0; 2] },
             cone_velocity: [state.y[CONE + 3], state.y[CONE + 4], state.y[CONE + 5]],
             inv_h,
             free,
-            held: [
-                !free,
-                !free || steady,
-                !free || steady,
-                c.prescribed[0] || steady,
-                c.prescribed[1] || steady,
-                c.prescribed[2] || steady,
-            ],
-            seat_held: steady,
+            held: [!free, !free || steady, !free || steady, false, false, false],
+            seat_held: false,
             prescribed: c.prescribed,
         };
+        cage.hold_seats(steady);
         u.clear();
         for j in 0..z {
             let o = c.layout.roller(j);

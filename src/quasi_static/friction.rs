@@ -281,7 +281,7 @@ impl FrictionModel {
             sigma: p.roughness,
             mu: p.mu,
             flange_mu0: p.flange_mu0,
-            rib_coulomb: (p.flange_mu >= 0.0).then_some(p.flange_mu),
+            rib_coulomb: p.rib_coulomb(),
             traction: p.traction,
             lubricant: p.lubricant(g.e_prime),
             supply: p.supply_law(b),
