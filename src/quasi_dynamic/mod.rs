@@ -85,6 +85,11 @@ const UNKNOWNS: usize = 6;
 /// offset the last step found).
 const OUT_OF_PLANE: usize = 3;
 const SEAT: usize = 3;
+/// Which prediction of the out-of-plane unknowns (1: the state at the roller's place, 0: its
+/// own history) a step takes before any step has compared them: the pocket offset follows the
+/// cage (a floating cage's whirl carries its pattern round with it), skew and spin follow the
+/// load zone.
+const PLACE_FIRST: [f64; OUT_OF_PLANE] = [0.0, 1.0, 1.0];
 /// The global unknowns: the cage's speed (rad/s) and its centre's y and z (m), then the
 /// cone's translations x, y, z (m; held where the inputs prescribe them).
 const GLOBALS: usize = 6;
@@ -145,6 +150,12 @@ pub struct QuasiDynamic {
     held_y: Vec<f64>,
     held_u: Vec<[f64; UNKNOWNS]>,
     held_g: [f64; GLOBALS],
+    /// The rollers' unknowns at a step's start, from which `Memory::read` predicts, its two
+    /// predictions of each out-of-plane unknown (the roller's own history, the state at its
+    /// place), and whether this step has them.
+    field: Vec<[f64; UNKNOWNS]>,
+    predicted: Vec<[[f64; 2]; OUT_OF_PLANE]>,
+    have_prediction: bool,
 }
 
 /// The outcome of one step's balance.
@@ -193,7 +204,7 @@ impl Memory {
     /// First a tag and the lengths of the remembered step and of the one before it; per roller
     /// its out-of-plane unknowns at the starts of those two steps, its seat's offsets, A, B and
     /// C; then the cage's unknowns at the two starts, the cone's offsets and D.
-    const TAG: f64 = 4.0;
+    const TAG: f64 = 5.0;
     const BLOCK: usize = UNKNOWNS * UNKNOWNS;
     const PER_ROLLER: usize = 2 * OUT_OF_PLANE + (UNKNOWNS - SEAT) + 3 * Self::BLOCK;
 
@@ -202,15 +213,31 @@ impl Memory {
     }
 
     fn len(&self) -> usize {
-        3 + self.z * Self::PER_ROLLER + 2 * CONE_AT + (GLOBALS - CONE_AT) + Self::BLOCK
+        3 + self.z * Self::PER_ROLLER + 2 * CONE_AT + (GLOBALS - CONE_AT) + Self::BLOCK + OUT_OF_PLANE
     }
 
     /// Read the Jacobian into `qd` and predict the unknowns `u`, `g` (this step's start
     /// values out of the plane, the quasi-static seat in it) over this step's length `h`
-    /// (none: a steady solve, no extrapolation): out of the plane quadratically through the
-    /// two remembered starts where the three steps have the same length, else linearly; in
-    /// the plane the seat plus the remembered offsets; false where there is nothing to read.
-    fn read(&self, m: &[f64], qd: &mut QuasiDynamic, h: Option<f64>, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; GLOBALS]) -> bool {
+    /// (none: a steady solve, no extrapolation), the cage having turned by `shift` pitches
+    /// since the step's start: each roller takes the balanced state the last step found at
+    /// the azimuth it moves to (between the two rollers that bracket it there), out of the
+    /// plane its unknowns, in the plane its seat's offsets, and its Jacobian's blocks; out of
+    /// the plane it adds the rollers' mean change over the last step. Under steady running
+    /// the balance is a field fixed in the housing's frame that the rollers pass through (the
+    /// load zone's), so a roller entering or leaving its load zone starts from the state its
+    /// neighbour had there, not from a time extrapolation of its own history (which
+    /// overshoots where its spin or skew just jumped). The globals extrapolate in time,
+    /// quadratically through the two remembered starts where the three steps have the same
+    /// length, else linearly. False where there is nothing to read.
+    fn read(
+        &self,
+        m: &[f64],
+        qd: &mut QuasiDynamic,
+        h: Option<f64>,
+        shift: f64,
+        u: &mut [[f64; UNKNOWNS]],
+        g: &mut [f64; GLOBALS],
+    ) -> bool {
         if m.len() != self.len() || m[0] != Self::TAG {
             return false;
         }
@@ -229,21 +256,43 @@ impl Memory {
             }
         };
         let b = Self::BLOCK;
-        let mut k = 3;
-        for j in 0..self.z {
+        let at = |j: usize| 3 + j * Self::PER_ROLLER;
+        let offsets = 2 * OUT_OF_PLANE;
+        let blocks = offsets + UNKNOWNS - SEAT;
+        // the rollers' mean change of their out-of-plane unknowns over the last step
+        let mut trend = [0.0; OUT_OF_PLANE];
+        for (j, uj) in u.iter().enumerate() {
             for i in 0..OUT_OF_PLANE {
-                u[j][i] = extrapolate(u[j][i], m[k + i], m[k + OUT_OF_PLANE + i]);
+                trend[i] += (uj[i] - m[at(j) + i]) * ratio / self.z as f64;
             }
-            k += 2 * OUT_OF_PLANE;
-            for i in SEAT..UNKNOWNS {
-                u[j][i] += m[k + i - SEAT];
-            }
-            k += UNKNOWNS - SEAT;
-            qd.block[j].copy_from_slice(&m[k..k + b]);
-            qd.to_cage[j].copy_from_slice(&m[k + b..k + 2 * b]);
-            qd.cage_rows[j].copy_from_slice(&m[k + 2 * b..k + 3 * b]);
-            k += 3 * b;
         }
+        let trend = trend.map(|t| if t.is_finite() { t } else { 0.0 });
+        qd.field.copy_from_slice(u);
+        let shift = if h.is_some() && shift.is_finite() { shift } else { 0.0 };
+        let choice = &m[m.len() - OUT_OF_PLANE..];
+        for (j, uj) in u.iter_mut().enumerate() {
+            let (p, q, w) = bracket(self.z, j, shift);
+            let blend = |a: f64, b: f64| a + w * (b - a);
+            for i in 0..OUT_OF_PLANE {
+                let own = extrapolate(qd.field[j][i], m[at(j) + i], m[at(j) + OUT_OF_PLANE + i]);
+                let place = blend(qd.field[p][i], qd.field[q][i]) + trend[i];
+                qd.predicted[j][i] = [own, place];
+                uj[i] = if choice[i] == 1.0 { place } else { own };
+            }
+            for i in SEAT..UNKNOWNS {
+                uj[i] += blend(m[at(p) + offsets + i - SEAT], m[at(q) + offsets + i - SEAT]);
+            }
+            let read_block = |into: &mut Block, from: usize| {
+                let (mp, mq) = (&m[at(p) + from..at(p) + from + b], &m[at(q) + from..at(q) + from + b]);
+                for (v, (x, y)) in into.iter_mut().zip(mp.iter().zip(mq)) {
+                    *v = blend(*x, *y);
+                }
+            };
+            read_block(&mut qd.block[j], blocks);
+            read_block(&mut qd.to_cage[j], blocks + b);
+            read_block(&mut qd.cage_rows[j], blocks + 2 * b);
+        }
+        let mut k = at(self.z);
         if qd.dynamic.c.cage_dynamic {
             for i in 0..CONE_AT {
                 g[i] = extrapolate(g[i], m[k + i], m[k + CONE_AT + i]);
@@ -257,6 +306,7 @@ impl Memory {
         }
         k += GLOBALS - CONE_AT;
         qd.d_cage.copy_from_slice(&m[k..k + b]);
+        qd.have_prediction = h.is_some();
         true
     }
 
@@ -264,7 +314,16 @@ impl Memory {
     /// the remembered step's (from `m`, NaN where it holds none), the balanced unknowns' `u`,
     /// `g` offsets from the step's quasi-static seat (kept as they were after a step on held
     /// seats, `seat_held`) and the step's Jacobian, in place.
-    fn write(&self, m: &mut Vec<f64>, qd: &QuasiDynamic, h: Option<f64>, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], seat_held: bool) {
+    fn write(
+        &self,
+        m: &mut Vec<f64>,
+        qd: &QuasiDynamic,
+        h: Option<f64>,
+        u: &[[f64; UNKNOWNS]],
+        g: &[f64; GLOBALS],
+        seat_held: bool,
+        limit: &[f64; UNKNOWNS],
+    ) {
         let held = m.len() == self.len() && m[0] == Self::TAG;
         let previous_h = if held { m[1] } else { f64::NAN };
         m.resize(self.len(), f64::NAN);
@@ -308,7 +367,38 @@ impl Memory {
         }
         k += GLOBALS - CONE_AT;
         m[k..k + b].copy_from_slice(qd.d_cage.as_slice());
+        k += b;
+        // per out-of-plane unknown, the prediction that came closer to this step's balance
+        // (its scaled squared error summed over the rollers) serves the next step
+        for i in 0..OUT_OF_PLANE {
+            m[k + i] = if qd.have_prediction {
+                let error = |a: usize| -> f64 {
+                    u.iter()
+                        .zip(&qd.predicted)
+                        .map(|(uj, pj)| ((uj[i] - pj[i][a]) / limit[i]).powi(2))
+                        .sum()
+                };
+                if error(1) < error(0) {
+                    1.0
+                } else {
+                    0.0
+                }
+            } else if held {
+                m[k + i]
+            } else {
+                PLACE_FIRST[i]
+            };
+        }
     }
+}
+
+/// The two rollers whose places bracket roller `j`'s after the cage turned by `shift`
+/// pitches (of `z` rollers), and the weight of the second: roller j then stands where
+/// roller j + shift stood.
+fn bracket(z: usize, j: usize, shift: f64) -> (usize, usize, f64) {
+    let whole = shift.floor();
+    let p = (j as i64 + whole as i64).rem_euclid(z as i64) as usize;
+    (p, (p + 1) % z, shift - whole)
 }
 
 /// The roller's axis a and its skew axis m (the in-plane normal) in the azimuth frame's
@@ -495,6 +585,9 @@ impl QuasiDynamic {
             held_y: vec![0.0; n],
             held_u: Vec::with_capacity(z),
             held_g: [0.0; GLOBALS],
+            field: vec![[0.0; UNKNOWNS]; z],
+            predicted: vec![[[0.0; 2]; OUT_OF_PLANE]; z],
+            have_prediction: false,
         }
     }
 
@@ -693,7 +786,7 @@ impl QuasiDynamic {
                 // `HELD_SEAT_STEP` of the communication step: on a shorter step the free seats'
                 // balance is closer to its start
                 Ok(balance) if balance.seat_held && sub > h * HELD_SEAT_STEP && hs.is_finite() => {
-                    state.copy_from(&before);
+                    restore_keeping_counters(state, &before);
                     sub *= 0.5;
                 }
                 Ok(balance) => {
@@ -705,9 +798,9 @@ impl QuasiDynamic {
                     done = end;
                 }
                 Err(e) => {
-                    state.copy_from(&before);
+                    restore_keeping_counters(state, &before);
                     if sub <= h / MAX_SUBSTEPS || !hs.is_finite() {
-                        state.copy_from(&start);
+                        restore_keeping_counters(state, &start);
                         (self.scratch, self.scratch_step) = (Some(start), Some(before));
                         return Err(e);
                     }
@@ -780,7 +873,10 @@ impl QuasiDynamic {
         // the secant updates serve time steps whose first guess is close: not the steady
         // solve from the seat, and not past a correction that grew
         let mut secant = start == Start::Secant && h.is_finite();
-        let mut have_jacobian = remember && memory.read(&state.memory, self, h.is_finite().then_some(h), &mut u, &mut g);
+        let turned = (cage_angle - self.cage_angle(state) + 0.5 * TAU).rem_euclid(TAU) - 0.5 * TAU;
+        let shift = turned / self.pitch();
+        self.have_prediction = false;
+        let mut have_jacobian = remember && memory.read(&state.memory, self, h.is_finite().then_some(h), shift, &mut u, &mut g);
         let mut balance = Balance::default();
         let mut last = f64::INFINITY;
         // the last full Newton step's start and the share of it taken (damped where the
@@ -802,10 +898,35 @@ impl QuasiDynamic {
             if have_jacobian {
                 correction = self.newton_correction(&cage_residual, &cage, &scales);
             }
+            // the natural monotonicity test, with the Jacobian that gave the last step: where
+            // this point's correction is larger than the last, the step went too far and is
+            // taken back by half. On a predicted step (`Start::Secant`, close to its balance),
+            // a step from a Jacobian kept from before or updated by secants says rather that
+            // the Jacobian is stale: it is taken anew here
+            let mut diverged = false;
+            if let Some(c) = correction.filter(|&c| c > 1.0 && c > last) {
+                secant = false;
+                diverged = start == Start::Secant && !fresh;
+                if !diverged && lambda > MIN_DAMPING {
+                    if let Some(g0) = &base {
+                        balance.correction = c;
+                        lambda *= 0.5;
+                        for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
+                            for k in 0..UNKNOWNS {
+                                uj[k] = u0j[k] + lambda * dj[k];
+                            }
+                        }
+                        for k in 0..GLOBALS {
+                            g[k] = g0[k] + lambda * self.cage_step_taken[k];
+                        }
+                        continue;
+                    }
+                }
+            }
             // a Jacobian kept from before that no longer contracts the corrections by a
             // factor of two is taken anew here
             let slow = correction.is_some_and(|c| c > 1.0 && c > 0.5 * last);
-            if !have_jacobian || correction.is_none() || (slow && !fresh) {
+            if !have_jacobian || correction.is_none() || (slow && !fresh) || diverged {
                 self.blocks(inputs, &cage, &u, &g, &scales, &mut y);
                 let perturbed = if cage.seat_held { SEAT } else { UNKNOWNS } - usize::from(!cage.free);
                 balance.roller_evaluations += perturbed as u64 * z;
@@ -841,24 +962,6 @@ impl QuasiDynamic {
                 // converged at the state just evaluated, which the outputs read
                 break Ok(());
             }
-            if correction > last {
-                secant = false;
-            }
-            if correction > last && lambda > MIN_DAMPING {
-                if let Some(g0) = &base {
-                    // back along the last step: half of what was taken
-                    lambda *= 0.5;
-                    for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
-                        for k in 0..UNKNOWNS {
-                            uj[k] = u0j[k] + lambda * dj[k];
-                        }
-                    }
-                    for k in 0..GLOBALS {
-                        g[k] = g0[k] + lambda * self.cage_step_taken[k];
-                    }
-                    continue;
-                }
-            }
             base_u.clone_from(&u);
             base = Some(g);
             lambda = (2.0 * lambda).min(1.0);
@@ -877,16 +980,19 @@ impl QuasiDynamic {
             }
             other => other,
         };
+        // the work counts whether or not the balance converged (a step's failed attempts
+        // are its cost too); an attempt that failed counts as a rejected step
+        state.counters.rhs += balance.roller_evaluations.div_ceil(z);
+        state.counters.jacobians += balance.jacobians as u64;
+        state.counters.rejected += u64::from(result.is_err());
         let outcome = match result {
             Ok(()) => {
                 state.y.copy_from_slice(&y);
-                memory.write(&mut state.memory, self, h.is_finite().then_some(h), &u, &g, balance.seat_held);
+                memory.write(&mut state.memory, self, h.is_finite().then_some(h), &u, &g, balance.seat_held, &scales.limit);
                 if h.is_finite() {
                     state.t += h;
                 }
                 state.counters.steps += 1;
-                state.counters.rhs += balance.roller_evaluations / z;
-                state.counters.jacobians += balance.jacobians as u64;
                 Ok(balance)
             }
             Err(correction) => Err(ModelError::NoEquilibrium {
@@ -1005,8 +1111,8 @@ impl QuasiDynamic {
         col / by
     }
 
-    /// Each roller's 6 x 6 block and its columns of the global equations by forward
-    /// differences of its own contacts (the frame of cone and cage unchanged), about the state
+    /// Each roller's 6 x 6 block and its columns of the global equations by
+    /// forward differences of its own contacts (the frame of cone and cage unchanged), about the state
     /// `y` the last `residuals` evaluated.
     fn blocks(&mut self, inputs: &Inputs, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], sc: &Scales, y: &mut [f64]) {
         let frame = contacts::frame(&self.dynamic.g, &self.dynamic.c, inputs, y);
@@ -1256,6 +1362,13 @@ impl QuasiDynamic {
         let d = &self.dynamic;
         contacts::evaluate_roller(&d.g, &d.c, inputs, frame, y, j, Some(&mut self.dy_roller), None)
     }
+}
+
+/// Put `state` back to `to`, keeping the work counted since (`DynamicState::counters`).
+fn restore_keeping_counters(state: &mut DynamicState, to: &DynamicState) {
+    let counters = state.counters;
+    state.copy_from(to);
+    state.counters = counters;
 }
 
 /// The inverse of a roller's block; where it is singular (a roller that touches nothing has
