@@ -26,6 +26,13 @@ work="$ROOT/target/leaks"
 rm -rf "$work"
 mkdir -p "$work/fmu"
 python3 -c 'import sys, zipfile; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])' "$fmu" "$work/fmu"
+# The library in the FMU is stripped; its debug file (written beside the FMU by `trb fmu`, named
+# by the library's .gnu_debuglink) goes beside the extracted library, where valgrind finds it
+# and names functions and lines in a report.
+debug="${fmu%.fmu}.linux64.debug"
+if [ -f "$debug" ]; then
+    cp "$debug" "$work/fmu/binaries/linux64/"
+fi
 guid="$(python3 -c 'import re, sys; print(re.search(r"guid=\"([^\"]+)\"", open(sys.argv[1]).read()).group(1))' "$work/fmu/modelDescription.xml")"
 gcc -O1 -g -Wall -Wextra -o "$work/driver" scripts/leaks_driver.c -ldl
 

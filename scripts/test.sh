@@ -4,18 +4,19 @@
 #
 #   ./scripts/test.sh [extra pytest arguments]
 #
-# 1. the project venv .venv (Python 3.11), (re)created when missing or when
-#    tests/python/requirements.txt or python/pyproject.toml changed (their hash is kept in
-#    .venv), with the project's Python package python/ (trb, the trb-sweep console script)
-#    installed editable;
+# 1. the project venv .venv (made with the first python3 on PATH that is 3.11 or newer),
+#    (re)created when missing or when tests/python/requirements.txt or python/pyproject.toml
+#    changed (their hash is kept in .venv), with the project's Python package python/ (trb,
+#    the trb-sweep console script) installed editable;
 # 2. cargo test --release (all Rust unit and integration tests);
 # 3. cargo run --release -- fmu (target/fmu/TaperedRollerBearing.fmu), then its leak check
 #    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh); then the
 #    portable FMU (cargo run --release -- fmu --portable, tools by scripts/cross-setup.sh) and
 #    its tests (tests/portable: glibc 2.17, the win64 DLL under wine against linux64);
 # 4. pytest tests/python.
-# Needs only Rust (cargo), Python 3.11 with pip (and venv), and a C toolchain for cargo; the
-# portable FMU's tools are installed by scripts/cross-setup.sh (Debian packages only as root).
+# Needs only Rust (cargo), Python 3.11 or newer with pip (and venv), and a C toolchain for
+# cargo; the portable FMU's tools are installed by scripts/cross-setup.sh (Debian packages
+# only as root).
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -54,23 +55,37 @@ if [ -n "$FREE_KB" ] && [ "$FREE_KB" -lt "$NEED_KB" ]; then
 fi
 
 # --- 1. Python venv -----------------------------------------------------------------------
+# The first of python3, python3.13, python3.12, python3.11 on PATH that runs and is 3.11 or newer
+# (a name that is on PATH but does not run, e.g. a pyenv shim without its version, is passed over).
+PYTHON_NAMES=(python3 python3.13 python3.12 python3.11)
 find_python() {
     local candidate
-    for candidate in python3.11 python3; do
+    for candidate in "${PYTHON_NAMES[@]}"; do
         if command -v "$candidate" >/dev/null 2>&1 &&
-            [ "$("$candidate" -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)" = "3.11" ]; then
+            "$candidate" -c 'import sys; sys.exit(sys.version_info < (3, 11))' >/dev/null 2>&1; then
             command -v "$candidate"
             return 0
         fi
     done
     return 1
 }
+python_versions_found() {
+    local candidate version found=""
+    for candidate in "${PYTHON_NAMES[@]}"; do
+        command -v "$candidate" >/dev/null 2>&1 || continue
+        version="$("$candidate" -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)" ||
+            version="does not run"
+        found="$found${found:+, }$candidate: $version"
+    done
+    echo "${found:-none of them is on PATH}"
+}
 
 begin "Python venv ($VENV)"
 want_hash="$( (cat "$REQUIREMENTS" "$PYPROJECT" | (sha256sum 2>/dev/null || shasum -a 256)) | cut -d' ' -f1)"
 have_hash="$(cat "$STAMP" 2>/dev/null || true)"
 if [ ! -x "$VENV/bin/python" ] || [ "$want_hash" != "$have_hash" ]; then
-    PYTHON="$(find_python)" || fail "Python 3.11 not found (tried python3.11, python3)"
+    PYTHON="$(find_python)" ||
+        fail "Python 3.11 or newer with pip and venv is needed to make $VENV; tried ${PYTHON_NAMES[*]} ($(python_versions_found))"
     echo "creating $VENV with $PYTHON ($("$PYTHON" --version 2>&1)); installing $REQUIREMENTS"
     rm -rf "$VENV"
     if "$PYTHON" -m venv "$VENV"; then

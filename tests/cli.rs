@@ -153,6 +153,119 @@ fn fmu_holds_exactly_the_required_entries_and_the_guid_of_its_bearing() {
     );
 }
 
+/// The section names and contents of an ELF64 little-endian file.
+fn elf_sections(bytes: &[u8]) -> Vec<(String, &[u8])> {
+    assert!(bytes.starts_with(b"\x7fELF\x02\x01"), "not a little-endian ELF64 file");
+    let u16_at = |o: usize| u16::from_le_bytes(bytes[o..o + 2].try_into().unwrap()) as usize;
+    let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap()) as usize;
+    let u64_at = |o: usize| u64::from_le_bytes(bytes[o..o + 8].try_into().unwrap()) as usize;
+    let (shoff, shentsize, shnum, shstrndx) = (u64_at(0x28), u16_at(0x3a), u16_at(0x3c), u16_at(0x3e));
+    let header = |i: usize| shoff + i * shentsize;
+    let names = u64_at(header(shstrndx) + 0x18);
+    (0..shnum)
+        .map(|i| {
+            let h = header(i);
+            let name_at = names + u32_at(h);
+            let end = bytes[name_at..].iter().position(|&b| b == 0).unwrap();
+            let name = String::from_utf8_lossy(&bytes[name_at..name_at + end]).into_owned();
+            // SHT_NOBITS (8) has no contents in the file
+            let (offset, size) = (u64_at(h + 0x18), u64_at(h + 0x20));
+            let contents = if u32_at(h + 4) == 8 {
+                &bytes[0..0]
+            } else {
+                &bytes[offset..offset + size]
+            };
+            (name, contents)
+        })
+        .collect()
+}
+
+/// The CRC-32 that `.gnu_debuglink` records (IEEE 802.3, as zlib's crc32).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+        }
+    }
+    !crc
+}
+
+fn objcopy_runs() -> bool {
+    Command::new("objcopy").arg("--version").output().is_ok_and(|o| o.status.success())
+}
+
+#[test]
+fn fmu_library_is_stripped_and_its_debug_information_kept_beside_the_fmu() {
+    if !objcopy_runs() {
+        eprintln!("skipping: no objcopy (binutils) on PATH; the FMU is packaged with its debug information");
+        return;
+    }
+    let s = Scratch::new("strip");
+    let out = s.path("Lean.fmu");
+    let o = trb(&["fmu", "--out", p(&out)]);
+    assert!(o.status.success(), "trb fmu failed: {}", stderr(&o));
+    assert!(!stderr(&o).contains("could not be stripped"), "{}", stderr(&o));
+    let debug_path = s.path("Lean.linux64.debug");
+    assert!(stdout(&o).contains("debug symbols beside it: Lean.linux64.debug"), "{}", stdout(&o));
+    if !cfg!(debug_assertions) {
+        let size = std::fs::metadata(&out).unwrap().len();
+        assert!(size <= 1_500_000, "the host-only FMU is {size} bytes, more than 1.5 MB");
+    }
+
+    // In the FMU: no debug sections, no static symbol table; the exported functions stay, and
+    // .gnu_debuglink names the file beside the FMU with its CRC.
+    let so = read_zip(&out).remove("binaries/linux64/TaperedRollerBearing.so").unwrap();
+    let sections = elf_sections(&so);
+    let names: Vec<&str> = sections.iter().map(|(n, _)| n.as_str()).collect();
+    assert!(
+        !names.iter().any(|n| n.starts_with(".debug_") || *n == ".symtab"),
+        "packaged library keeps {names:?}"
+    );
+    assert!(names.contains(&".dynsym"), "{names:?}");
+    for symbol in ["fmi2Instantiate", "fmi2DoStep", "fmi2GetVersion", "fmi2SerializeFMUstate"] {
+        assert!(
+            so.windows(symbol.len()).any(|w| w == symbol.as_bytes()),
+            "{symbol} is not exported any more"
+        );
+    }
+    let debug = std::fs::read(&debug_path).expect("the debug file beside the FMU");
+    let link = sections.iter().find(|(n, _)| n == ".gnu_debuglink").expect(".gnu_debuglink").1;
+    let name_end = link.iter().position(|&b| b == 0).unwrap();
+    assert_eq!(&link[..name_end], b"Lean.linux64.debug");
+    let crc_at = (name_end + 1).next_multiple_of(4);
+    assert_eq!(u32::from_le_bytes(link[crc_at..crc_at + 4].try_into().unwrap()), crc32(&debug));
+    // The debug file holds the line tables and the symbols.
+    let debug_names: Vec<String> = elf_sections(&debug).into_iter().map(|(n, _)| n).collect();
+    for section in [".debug_info", ".debug_line", ".symtab"] {
+        assert!(
+            debug_names.iter().any(|n| n == section),
+            "the debug file lacks {section}: {debug_names:?}"
+        );
+    }
+
+    // Packaging stays deterministic.
+    let again = s.path("again/Lean.fmu");
+    std::fs::create_dir_all(again.parent().unwrap()).unwrap();
+    assert!(trb(&["fmu", "--out", p(&again)]).status.success());
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
+    assert_eq!(debug, std::fs::read(s.path("again/Lean.linux64.debug")).unwrap());
+
+    // Without a usable objcopy the library goes in as it is, with a warning, and a debug file
+    // of an earlier packaging, which would not match, is removed.
+    let o = Command::new(EXE)
+        .args(["fmu", "--out", p(&out)])
+        .env("OBJCOPY", s.path("no-such-objcopy"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("could not be stripped"), "{}", stderr(&o));
+    assert!(!debug_path.exists(), "a stale debug file stays beside the FMU");
+    let so = read_zip(&out).remove("binaries/linux64/TaperedRollerBearing.so").unwrap();
+    assert!(elf_sections(&so).iter().any(|(n, _)| n == ".debug_info"));
+}
+
 /// A stand-in for the shared library, for tests about everything else in the archive.
 fn fake_library(s: &Scratch) -> PathBuf {
     s.write("libfake.so", "\x7fELF stand-in exporting fmi2Instantiate fmi2DoStep fmi2GetVersion")
@@ -187,7 +300,12 @@ fn fmu_of_a_bearing_file_packages_its_exact_text() {
     let lib = fake_library(&s);
     let o = trb(&["fmu", "--bearing", p(&file), "--library", p(&lib), "--out", p(&out)]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+    // (the stand-in library is no object file objcopy reads: it goes in as it is, saying so)
+    let err = stderr(&o);
+    assert!(
+        !err.lines().any(|l| l.contains("warning") && !l.contains("could not be stripped")),
+        "{err}"
+    );
     let entries = read_zip(&out);
     assert_eq!(entries["resources/bearing.json"], text.as_bytes());
     assert!(stdout(&o).contains("MY-32008"));

@@ -26,6 +26,7 @@ pub mod scenario;
 pub mod simulate;
 pub mod soak;
 pub mod stress;
+pub mod strip;
 pub mod study;
 pub mod svg;
 

@@ -8,6 +8,11 @@
 //!   `paths::default_library` for where cargo leaves it.
 //! - with `--portable` instead: `binaries/linux64/TaperedRollerBearing.so` for glibc >= 2.17
 //!   and `binaries/win64/TaperedRollerBearing.dll`, both cross-built by `cli::portable`.
+//!
+//!   Every library is packaged stripped of its debug information and static symbols
+//!   (`cli::strip`), which go beside the FMU into `<FMU name>.<platform>.debug` (for
+//!   `target/fmu/TaperedRollerBearing.fmu`: `target/fmu/TaperedRollerBearing.linux64.debug`),
+//!   the file the library's `.gnu_debuglink` names.
 //! - `resources/bearing.json`: the exact JSON text of the packaged bearing
 //! - `resources/presets/<NAME>.json`: all presets, and `bearing.schema.json`, the bearing
 //!   file's JSON Schema
@@ -15,7 +20,7 @@
 //! - `documentation/LICENSE.txt`: the project's licence (the model description names it)
 //! - `model.png`: the icon, a drawing of the packaged bearing (`cli::icon`)
 
-use super::{documentation, icon, paths, portable, CliError};
+use super::{documentation, icon, paths, portable, strip, CliError};
 use clap::Args;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -110,13 +115,15 @@ pub struct Packaged {
     pub platforms: Vec<&'static str>,
     pub guid: String,
     pub size: u64,
+    /// The debug files written beside the FMU, one per stripped library.
+    pub debug_files: Vec<PathBuf>,
     pub warnings: Vec<String>,
 }
 
 impl Packaged {
     /// The one-line summary printed by `trb fmu`.
     pub fn summary(&self) -> String {
-        format!(
+        let mut line = format!(
             "{}: bearing {}, {} rollers, {}, GUID {}, {}",
             self.path.display(),
             self.bearing,
@@ -124,7 +131,16 @@ impl Packaged {
             self.platforms.join(" + "),
             self.guid,
             human_size(self.size)
-        )
+        );
+        if !self.debug_files.is_empty() {
+            let names: Vec<String> = self
+                .debug_files
+                .iter()
+                .map(|p| p.file_name().unwrap_or(p.as_os_str()).to_string_lossy().into_owned())
+                .collect();
+            line.push_str(&format!("; debug symbols beside it: {}", names.join(", ")));
+        }
+        line
     }
 }
 
@@ -172,17 +188,42 @@ pub fn package_binaries(bearing_arg: &str, out: Option<&Path>, binaries: &[Binar
     let loaded = load_bearing(bearing_arg)?;
     let bearing = &loaded.bearing;
 
+    let out = match out {
+        Some(p) if p.is_dir() => p.join(format!("{MODEL_IDENTIFIER}.fmu")),
+        Some(p) => p.to_path_buf(),
+        None => paths::default_fmu_path()?,
+    };
+
     let mut warnings = Vec::new();
     let mut libraries: Vec<(String, Vec<u8>)> = Vec::new();
+    // (debug file beside the FMU, its bytes, or None: remove a stale one)
+    let mut debug_files: Vec<(PathBuf, Option<Vec<u8>>)> = Vec::new();
     for binary in binaries {
         let library = &binary.path;
-        let lib_bytes = std::fs::read(library).map_err(|e| {
+        let mut lib_bytes = std::fs::read(library).map_err(|e| {
             CliError::failed(format!(
                 "cannot read the FMU shared library {}: {e}; build it with `cargo build --release` \
                  or pass --library",
                 library.display()
             ))
         })?;
+        let debug_path = debug_file_path(&out, binary.platform);
+        let debug_name = debug_path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        match strip::split(library, binary.platform, &debug_name) {
+            Ok(split) => {
+                lib_bytes = split.stripped;
+                debug_files.push((debug_path, Some(split.debug)));
+            }
+            Err(why) => {
+                warnings.push(format!(
+                    "{} is packaged with its debug information ({}): it could not be stripped: {why} \
+                     (GNU objcopy, Debian: apt-get install binutils; OBJCOPY names another)",
+                    library.display(),
+                    human_size(lib_bytes.len() as u64)
+                ));
+                debug_files.push((debug_path, None));
+            }
+        }
         for symbol in ["fmi2Instantiate", "fmi2DoStep", "fmi2GetVersion"] {
             if !contains(&lib_bytes, symbol.as_bytes()) {
                 warnings.push(format!(
@@ -196,12 +237,6 @@ pub fn package_binaries(bearing_arg: &str, out: Option<&Path>, binaries: &[Binar
     }
     let mut libraries = libraries.into_iter();
     let (lib_name, lib_bytes) = libraries.next().ok_or_else(|| CliError::failed("no shared library to package"))?;
-
-    let out = match out {
-        Some(p) if p.is_dir() => p.join(format!("{MODEL_IDENTIFIER}.fmu")),
-        Some(p) => p.to_path_buf(),
-        None => paths::default_fmu_path()?,
-    };
 
     let (xml, guid) = model_description::generate(bearing);
     let html = documentation::generate(bearing, &loaded.json, &xml, &guid);
@@ -226,6 +261,19 @@ pub fn package_binaries(bearing_arg: &str, out: Option<&Path>, binaries: &[Binar
     entries.push(("model.png".into(), icon::model_png(bearing), 0o644));
 
     let size = write_zip(&out, &entries)?;
+    let mut written = Vec::new();
+    for (path, bytes) in debug_files {
+        match bytes {
+            Some(bytes) => {
+                write_atomically(&path, &bytes)?;
+                written.push(path);
+            }
+            // A debug file of an earlier packaging would not match this FMU's library.
+            None => {
+                let _ = std::fs::remove_file(&path);
+            }
+        }
+    }
     Ok(Packaged {
         path: out,
         bearing: bearing.name.clone(),
@@ -233,7 +281,28 @@ pub fn package_binaries(bearing_arg: &str, out: Option<&Path>, binaries: &[Binar
         platforms: binaries.iter().map(|b| b.platform).collect(),
         guid,
         size,
+        debug_files: written,
         warnings,
+    })
+}
+
+/// Where the debug information of the FMU's `platform` library goes: beside the FMU, named
+/// after it (`target/fmu/TaperedRollerBearing.fmu` -> `target/fmu/TaperedRollerBearing.linux64.debug`).
+pub fn debug_file_path(fmu: &Path, platform: &str) -> PathBuf {
+    let stem = fmu
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| MODEL_IDENTIFIER.to_string());
+    fmu.with_file_name(format!("{stem}.{platform}.debug"))
+}
+
+/// Write `bytes` next to `path` and rename the file into place.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+    std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path)).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        CliError::failed(format!("cannot write {}: {e}", path.display()))
     })
 }
 

@@ -42,6 +42,28 @@ def test_the_readme_fmpy_example_prints_what_the_readme_says(fmu_path, tmp_path)
     assert (tmp_path / "torque.png").stat().st_size > 1000
 
 
+def test_the_readme_install_line_names_what_the_example_imports_at_the_harness_pins():
+    """The one-line install before the example: every package the example imports, at the
+    version tests/python/requirements.txt pins (what the example is checked with above)."""
+    text = README.read_text()
+    at = text.index("## Use the FMU")
+    m = re.compile(r"^ {4}python3 -m venv venv && venv/bin/pip install (.+)$", re.M).search(text, at)
+    assert m, "no install line after '## Use the FMU'"
+    assert m.start() < text.index("```python", at), "the install line must come before the example"
+    named = dict(req.split("==") for req in m.group(1).split())
+    pins = {}
+    for line in (REPO / "tests" / "python" / "requirements.txt").read_text().splitlines():
+        line = line.split("#")[0].strip()
+        if "==" in line:
+            name, version = line.split("==")
+            pins[name.lower()] = version
+    code, _ = _block_after(text, "## Use the FMU", "python")
+    imported = {m.group(1) for m in re.finditer(r"^(?:from|import) (\w+)", code, re.M)} - set(sys.stdlib_module_names)
+    assert imported == set(named), f"the example imports {sorted(imported)}, the line installs {sorted(named)}"
+    for name, version in named.items():
+        assert pins.get(name) == version, f"README installs {name}=={version}, requirements.txt pins {pins.get(name)}"
+
+
 def _markdown_files() -> list[Path]:
     return [README, *sorted((REPO / "docs").glob("*.md"))]
 
