@@ -137,10 +137,8 @@ fn static_capacities_and_limiting_speeds_are_sane() {
 /// message naming the quasi-dynamic balance, its iterations and its largest correction, or an
 /// averaged balance that does not close; none is a crash, a NaN or an unbounded step.
 const KNOWN_2: &[(&str, &str)] = &[
-    // through the rollers' standstill (run-up from rest, a stop, a reversal): the regularised friction is stiffest there, the limitation of a start from rest (F17a)
+    // through the rollers' standstill (run-up from rest, a stop, a reversal): the regularised friction is stiffest there, the limitation of a start from rest (F17a); TRB130x230's stop and reversal pass
     ("TRB130x230/transient/run-up from rest to n_lim", "did not converge"),
-    ("TRB130x230/transient/sudden stop from n_lim", "did not converge"),
-    ("TRB130x230/transient/reversal +n_lim to -n_lim", "did not converge"),
     ("32018X/transient/run-up from rest to n_lim", "did not converge"),
     ("32018X/transient/sudden stop from n_lim", "did not converge"),
     ("32018X/transient/reversal +n_lim to -n_lim", "did not converge"),
@@ -210,15 +208,17 @@ const KNOWN_2: &[(&str, &str)] = &[
     ("TRB130x230/step-size/h = 1e-1 s", "did not converge"),
     ("32008/step-size/h = 1e-2 s", "did not converge"),
     ("32008/step-size/h = 1e-1 s", "did not converge"),
-    // 32008 at constant inputs under a load zone: refused after 16 to 29 good steps of 1 ms (F17e)
+    // 32008 at constant inputs under a load zone: refused after 16 to 35 good steps of 1 ms (F17e)
     ("32008/dynamic/energy balance, 0.1 C0 combined, constant", "did not converge"),
+    ("32008/dynamic/pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)", "did not converge"),
     // parameters at the ends of their ranges: dry friction with mu = 2, extreme viscosities, a pressure-viscosity coefficient of 0, a 5 % D crown (F17f)
     ("TRB130x230/parameters/dry, mu = 2", "did not converge"),
     ("32008/parameters/dry, mu = 2", "did not converge"),
     ("32008/parameters/oil.eta0 = 100 Pa s", "did not converge"),
     ("32008/parameters/crownDrop = 5 % D", "did not converge"),
-    // CRB-TRILOBE at 40 000 rpm with a deflected shaft: refused at its second step (F17g)
-    ("CRB-TRILOBE/deflection/xi 0.05 deg", "did not converge"),
+    // CRB-TRILOBE at 40 000 rpm with a deflected shaft: refused at its first or second step (F17g)
+    ("CRB-TRILOBE/deflection/xi 0.01 deg", "did not converge"),
+    ("CRB-TRILOBE/deflection/zeta -0.05 deg", "did not converge"),
     // steps whose balance converges only on the held quasi-static seat (warning SeatHeld): the mean reaction.Fx misses Fx by 3.2 % (F18)
     ("32008/dynamic/energy balance, 0.3 C0 combined, xi 0.05 deg", "mean reaction.Fx"),
 ];

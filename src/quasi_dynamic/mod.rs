@@ -43,8 +43,13 @@
 //! cage and the cone, the backward Euler steps of their motion. The quasi-static model
 //! (`crate::quasi_static`, fidelity 0) places the seat the Newton iterations start from: each
 //! step solves it at the cage angle the step ends at and adds the offsets of the balanced
-//! contact coordinates from the seat the last step found (the tractions' share, which moves
-//! slowly). Newton's method with each roller's 6 × 6 block by finite differences of that
+//! contact coordinates from the seat that the last step found at the roller's new place (the
+//! tractions' share). Under steady running the balance is a pattern fixed in the housing (the
+//! load zone's) that the rollers pass through, so each roller starts from the state the last
+//! step found where it now stands, interpolated between the two rollers that bracket that
+//! place; only its place in the pocket, which follows the cage (a floating cage's whirl
+//! carries that pattern round), starts from its own history. Which of the two each
+//! out-of-plane unknown takes is chosen by which came closer on the last step. Newton's method with each roller's 6 × 6 block by finite differences of that
 //! roller's contacts alone and the couplings to the globals by differences of the whole
 //! right-hand side, the globals eliminated by their Schur complement (O(Z) per iteration). A
 //! step that does not converge within [`MAX_ITERATIONS`] is taken in halves, down to
@@ -883,6 +888,8 @@ impl QuasiDynamic {
         // corrections grow: Deuflhard's natural monotonicity test on the scaled corrections)
         let mut base: Option<[f64; GLOBALS]> = None;
         let mut lambda = 1.0;
+        // a new Jacobian is due at the next point (a held one's step went too far)
+        let mut refresh = false;
         self.evaluated_cage = None;
         let result = loop {
             let cage_residual = self.residuals(inputs, &cage, &u, &g, &mut y);
@@ -901,24 +908,19 @@ impl QuasiDynamic {
             // the natural monotonicity test, with the Jacobian that gave the last step: where
             // this point's correction is larger than the last, the step went too far and is
             // taken back by half. On a predicted step (`Start::Secant`, close to its balance),
-            // a step from a Jacobian kept from before or updated by secants says rather that
-            // the Jacobian is stale: it is taken anew here
-            let mut diverged = false;
-            if let Some(c) = correction.filter(|&c| c > 1.0 && c > last) {
+            // a step from a Jacobian kept from before or updated by secants also says that the
+            // Jacobian is stale: it is taken anew where the step is taken back to (a new
+            // Jacobian's corrections are not comparable with the last, so on a predicted step
+            // the test comes before it)
+            let predicted = start == Start::Secant;
+            if let Some(c) = correction.filter(|&c| predicted && c > 1.0 && c > last) {
                 secant = false;
-                diverged = start == Start::Secant && !fresh;
-                if !diverged && lambda > MIN_DAMPING {
+                refresh |= !fresh;
+                if lambda > MIN_DAMPING {
                     if let Some(g0) = &base {
                         balance.correction = c;
                         lambda *= 0.5;
-                        for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
-                            for k in 0..UNKNOWNS {
-                                uj[k] = u0j[k] + lambda * dj[k];
-                            }
-                        }
-                        for k in 0..GLOBALS {
-                            g[k] = g0[k] + lambda * self.cage_step_taken[k];
-                        }
+                        self.take_back(&mut u, &mut g, &base_u, g0, lambda);
                         continue;
                     }
                 }
@@ -926,7 +928,7 @@ impl QuasiDynamic {
             // a Jacobian kept from before that no longer contracts the corrections by a
             // factor of two is taken anew here
             let slow = correction.is_some_and(|c| c > 1.0 && c > 0.5 * last);
-            if !have_jacobian || correction.is_none() || (slow && !fresh) || diverged {
+            if !have_jacobian || correction.is_none() || (slow && !fresh) || refresh {
                 self.blocks(inputs, &cage, &u, &g, &scales, &mut y);
                 let perturbed = if cage.seat_held { SEAT } else { UNKNOWNS } - usize::from(!cage.free);
                 balance.roller_evaluations += perturbed as u64 * z;
@@ -935,6 +937,7 @@ impl QuasiDynamic {
                 balance.roller_evaluations += spent * z;
                 have_jacobian = true;
                 fresh = true;
+                refresh = false;
                 balance.jacobians += 1;
                 self.secant_base(&u, &g, &cage_residual);
                 correction = self.newton_correction(&cage_residual, &cage, &scales);
@@ -961,6 +964,17 @@ impl QuasiDynamic {
                 }
                 // converged at the state just evaluated, which the outputs read
                 break Ok(());
+            }
+            // the other starts (far from the balance) test after any new Jacobian
+            if !predicted && correction > last {
+                secant = false;
+                if lambda > MIN_DAMPING {
+                    if let Some(g0) = &base {
+                        lambda *= 0.5;
+                        self.take_back(&mut u, &mut g, &base_u, g0, lambda);
+                        continue;
+                    }
+                }
             }
             base_u.clone_from(&u);
             base = Some(g);
@@ -1292,6 +1306,19 @@ impl QuasiDynamic {
     fn take_step(&mut self) {
         self.step_taken.clone_from(&self.correction);
         self.cage_step_taken = self.cage_correction;
+    }
+
+    /// Put `u`, `g` at the share `lambda` of the last full Newton step from its start `base_u`,
+    /// `g0` (back along a step that went too far).
+    fn take_back(&self, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; GLOBALS], base_u: &[[f64; UNKNOWNS]], g0: &[f64; GLOBALS], lambda: f64) {
+        for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
+            for k in 0..UNKNOWNS {
+                uj[k] = u0j[k] + lambda * dj[k];
+            }
+        }
+        for k in 0..GLOBALS {
+            g[k] = g0[k] + lambda * self.cage_step_taken[k];
+        }
     }
 
     /// Apply the share `lambda` of the last Newton correction to `u` and `g`.
