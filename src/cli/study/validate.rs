@@ -65,6 +65,7 @@ impl Plan {
     fn dynamic_variant(&self, traction: i32) -> Variant {
         Variant {
             traction: Some(traction),
+            fidelity: None,
             stop_time: self.quick.then_some(0.01),
             contact_law: None,
         }
@@ -753,6 +754,80 @@ fn w25_book_law_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(usize, Option<Cas
             (k, r)
         })
         .collect()
+}
+
+/// The fidelities the [W25] cases are run at beside the dynamic model's runs of the section:
+/// the quasi-static and the quasi-dynamic model.
+const OTHER_FIDELITIES: [i32; 2] = [0, 2];
+
+/// The [W25] cases at fidelities 0 and 2 (traction 0), each case's runs in the order of
+/// `OTHER_FIDELITIES`.
+fn w25_fidelity_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(&'static str, Vec<Option<CaseResult>>)> {
+    let names = plan.w25_cases();
+    eprintln!("[W25] at fidelities 0 and 2: {} cases, traction 0", names.len());
+    names
+        .into_iter()
+        .map(|name| {
+            let runs = OTHER_FIDELITIES
+                .iter()
+                .map(|&fidelity| {
+                    let variant = Variant {
+                        fidelity: Some(fidelity),
+                        ..plan.dynamic_variant(0)
+                    };
+                    w25::run_case(&w25::scenario_dir(), name, variant)
+                        .map_err(|e| ledger.failures.push(format!("[W25] `{name}` at fidelity {fidelity}: {e}")))
+                        .ok()
+                })
+                .collect();
+            (name, runs)
+        })
+        .collect()
+}
+
+/// Every [W25] case at the three fidelities (traction 0): the angles, the torque and the largest
+/// cone load of the quasi-static (0) and quasi-dynamic (2) models as ratios to the dynamic
+/// model's (1), and each one's wall time per simulated second.
+fn w25_at_three_fidelities(runs: &W25Runs, other: &[(&'static str, Vec<Option<CaseResult>>)]) -> String {
+    let mut md = String::from(
+        "### The [W25] cases at the three fidelities\n\n\
+         Every case above (traction 0) run again at `fidelity` = 0 (quasi-static, docs/model.md) and 2 (quasi-dynamic: \
+         seat, skew, pocket and spin in balance at each 1 ms communication step, the cage and the spins integrated, \
+         src/quasi_dynamic/), with the same statistics over the second half of the run. Each quantity is given at \
+         fidelity 1 (the dynamic model of the rows above) and as the ratios fidelity 0 / 1 and 2 / 1; fidelity 0 has \
+         no skew in lubricated contact (its skew model applies to dry contact, docs/model.md), so its skew ratios \
+         read 0. θ, ϕ in degrees; T the friction torque (N m); Qi the largest cone load of any roller at any sample \
+         (N); wall: seconds of wall time per simulated second in this run, one thread, start included (fidelity 0 | 1 | 2; a rough figure, the machine may have been shared: docs/performance.md has the timed ones).\n\n\
+         | case | θavg | 0/1 | 2/1 | θmax | 0/1 | 2/1 | ϕavg | 2/1 | ϕmax | 2/1 | T | 0/1 | 2/1 | Qi | 0/1 | 2/1 | wall 0 \\| 1 \\| 2 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let quantities: [(fn(&CaseResult) -> f64, bool); 6] = [
+        (tilt_avg_deg, true),
+        (tilt_max_deg, true),
+        (skew_avg_deg, false),
+        (skew_max_deg, false),
+        (|r| r.torque, true),
+        (|r| r.qi_peak, true),
+    ];
+    for (name, runs_at) in other {
+        let Some(dynamic) = runs.case(name, 0) else {
+            continue;
+        };
+        let (f0, f2) = (runs_at[0].as_ref(), runs_at[1].as_ref());
+        let mut row = format!("| `{name}` |");
+        for (get, with_f0) in quantities {
+            let v = get(dynamic);
+            row += &format!(" {} |", num(v));
+            if with_f0 {
+                row += &format!(" {} |", ratio_text(ratio(f0.map(get), v)));
+            }
+            row += &format!(" {} |", ratio_text(ratio(f2.map(get), v)));
+        }
+        let wall = |r: Option<&CaseResult>| r.map_or("—".to_string(), |r| format!("{:.3}", r.wall / r.simulated));
+        row += &format!(" {} \\| {} \\| {} |\n", wall(f0), wall(Some(dynamic)), wall(f2));
+        md += &row;
+    }
+    md + "\n"
 }
 
 /// The tilts of the deflection cases under [W25]'s printed law and under the book's, against
@@ -2526,6 +2601,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
     let y22 = Y22Runs::run(&plan)?;
     let w25 = W25Runs::run(&plan, &w25::scenario_dir(), plan.w25_cases(), "[W25]", &mut ledger);
     let book = w25_book_law_runs(&plan, &mut ledger);
+    let fidelities = w25_fidelity_runs(&plan, &mut ledger);
     let apex = if quick {
         W25Runs { cases: BTreeMap::new() }
     } else {
@@ -2540,6 +2616,7 @@ pub fn report(docs: &Path, quick: bool) -> Result<(), CliError> {
 
     let mut body = String::new();
     body += &w25_section(&w25, &book, &plan, &mut ledger);
+    body += &w25_at_three_fidelities(&w25, &fidelities);
     body += &d19_section(&d19, &mut ledger);
     body += &l22_section(&l22, &mut ledger);
     body += &y22_section(&y22, &mut ledger);

@@ -54,6 +54,8 @@ const CASES: &[&str] = &[
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Variant {
     pub traction: Option<i32>,
+    /// The FMU parameter `fidelity` (the scenario's where unset).
+    pub fidelity: Option<i32>,
     pub stop_time: Option<f64>,
     pub contact_law: Option<trb::bearing::ContactLaw>,
 }
@@ -120,6 +122,9 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
     let invalid = |e: String| CliError::invalid(format!("{name}: {e}"));
     if let Some(t) = variant.traction {
         scenario.set_parameter("traction", t.into()).map_err(invalid)?;
+    }
+    if let Some(f) = variant.fidelity {
+        scenario.set_parameter("fidelity", f.into()).map_err(invalid)?;
     }
     if let Some(t) = variant.stop_time {
         scenario.set_stop_time(t).map_err(invalid)?;
