@@ -98,10 +98,10 @@ pub struct Catalogue {
     /// Total width T, mm.
     #[serde(rename = "T_mm")]
     pub t: f64,
-    /// Cone (inner ring) width B, mm.
+    /// Cone (inner ring) width B, mm (it may exceed T, as in inch series, up to 1.5 T).
     #[serde(rename = "B_mm", default, skip_serializing_if = "Option::is_none")]
     pub b: Option<f64>,
-    /// Cup (outer ring) width C, mm.
+    /// Cup (outer ring) width C, mm (at most T).
     #[serde(rename = "C_mm", default, skip_serializing_if = "Option::is_none")]
     pub c: Option<f64>,
     /// Basic dynamic radial load rating C_r, N.
@@ -206,6 +206,25 @@ fn check_positive(errors: &mut Vec<CatalogueError>, field: &'static str, v: f64)
     }
 }
 
+/// A cone wider than the total width stands proud of the cup's back face: inch series do
+/// so by a few per cent (the Timken LM501349 cone, B = 19.812 mm, on T = 19.558 mm), so the
+/// cone is refused only beyond this share of T, where the figure is a typing error rather than
+/// a bearing (a cone half as wide again as the assembly would stand clear of its cup's race).
+const CONE_OVER_TOTAL_WIDTH: f64 = 1.5;
+
+/// What is wrong with the ring width `v` of the ring `field` ("B" the cone, "C" the cup) on
+/// the total width `t`: the cup lies inside the assembled width, the cone may stand proud of
+/// it (`CONE_OVER_TOTAL_WIDTH`).
+fn ring_width_fault(field: &str, v: f64, t: f64) -> Option<String> {
+    match field {
+        "C" if v > t => Some(format!("the total width T = {t} mm is below the cup width C = {v} mm")),
+        "B" if v > CONE_OVER_TOTAL_WIDTH * t => Some(format!(
+            "the cone width B = {v} mm is more than {CONE_OVER_TOTAL_WIDTH} times the total width T = {t} mm"
+        )),
+        _ => None,
+    }
+}
+
 impl Catalogue {
     /// Every fault of the data at once (empty: the data can be estimated from).
     pub fn faults(&self) -> Vec<CatalogueError> {
@@ -226,11 +245,10 @@ impl Catalogue {
         }
         for (field, v) in [("B", self.b), ("C", self.c), ("Y", self.y), ("C0r", self.c_0r)] {
             if let Some(v) = v {
-                if check_positive(&mut errors, field, v) && ok_t && (field == "B" || field == "C") && v > self.t {
-                    errors.push(CatalogueError {
-                        field: "T",
-                        message: format!("the total width T = {} mm is below the ring width {field} = {v} mm", self.t),
-                    });
+                if check_positive(&mut errors, field, v) && ok_t {
+                    if let Some(message) = ring_width_fault(field, v, self.t) {
+                        errors.push(CatalogueError { field: "T", message });
+                    }
                 }
             }
         }

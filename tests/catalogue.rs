@@ -215,7 +215,14 @@ fn bad_catalogue_data_names_every_field() {
         ),
         (
             Catalogue {
-                b: Some(18.0),
+                c: Some(18.0),
+                ..good.clone()
+            },
+            vec!["T"],
+        ),
+        (
+            Catalogue {
+                b: Some(30.0),
                 ..good.clone()
             },
             vec!["T"],
@@ -266,6 +273,20 @@ fn bad_catalogue_data_names_every_field() {
         assert_eq!(got, want, "{c:?}");
     }
     assert!(faults(good).is_empty());
+}
+
+/// An inch-series cone stands proud of the total width: the Timken LM501349/LM501310 envelope
+/// (d 41.275, D 73.431, T 19.558, cone B 19.812, cup C 14.732 mm) is estimated from (its rating
+/// and e here need only be plausible: the widths are what is tested).
+#[test]
+fn an_inch_series_cone_wider_than_the_total_width_is_accepted() {
+    let cat = Catalogue {
+        b: Some(19.812),
+        c: Some(14.732),
+        ..catalogue(41.275, 73.431, 19.558, 45_000.0, 0.40)
+    };
+    let estimate = cat.estimate();
+    assert!(estimate.is_ok(), "{:?}", estimate.err());
 }
 
 /// A bearing file may give a `catalogue` block instead of its internal geometry (and leave out
