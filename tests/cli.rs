@@ -795,7 +795,7 @@ fn bearing_estimate_builds_a_bearing_from_catalogue_data() {
 
     for (bad, fields) in [
         (vec!["--D", "25"], vec!["--D"]),
-        (vec!["--T", "15"], vec!["--T"]),
+        (vec!["--T", "13"], vec!["--T"]),
         (vec!["--e", "1.4"], vec!["--e"]),
         (vec!["--Cr", "900000"], vec!["--Cr"]),
         (vec!["--d", "NaN", "--Cr", "-5"], vec!["--d", "--Cr"]),
