@@ -210,7 +210,10 @@ const KNOWN_2: &[(&str, &str)] = &[
     ("32008/step-size/h = 1e-1 s", "did not converge"),
     // 32008 at constant inputs under a load zone: refused after 16 to 35 good steps of 1 ms (F17e)
     ("32008/dynamic/energy balance, 0.1 C0 combined, constant", "did not converge"),
-    ("32008/dynamic/pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)", "did not converge"),
+    (
+        "32008/dynamic/pure radial 0.05 C0, cone held at zero axial displacement (unloaded rollers)",
+        "did not converge",
+    ),
     // parameters at the ends of their ranges: dry friction with mu = 2, extreme viscosities, a pressure-viscosity coefficient of 0, a 5 % D crown (F17f)
     ("TRB130x230/parameters/dry, mu = 2", "did not converge"),
     ("32008/parameters/dry, mu = 2", "did not converge"),
