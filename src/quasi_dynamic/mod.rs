@@ -49,8 +49,8 @@
 //! step found where it now stands, interpolated between the two rollers that bracket that
 //! place; only its place in the pocket, which follows the cage (a floating cage's whirl
 //! carries that pattern round), starts from its own history. Which of the two each
-//! out-of-plane unknown takes is chosen by which came closer on the last step. Newton's method with each roller's 6 × 6 block by finite differences of that
-//! roller's contacts alone and the couplings to the globals by differences of the whole
+//! out-of-plane unknown takes is chosen by which came closer on the last step. Newton's method
+//! with each roller's 6 × 6 block by finite differences of that roller's contacts alone and the couplings to the globals by differences of the whole
 //! right-hand side, the globals eliminated by their Schur complement (O(Z) per iteration). A
 //! step that does not converge within [`MAX_ITERATIONS`] is taken in halves, down to
 //! 1/[`MAX_SUBSTEPS`] of the communication step; beyond that it is refused with its largest
@@ -199,8 +199,8 @@ enum Start {
 /// restored state steps on with the same bits: the step's length, the out-of-plane unknowns
 /// it started from (the next step extrapolates in time from them and its own start), the
 /// offsets of the balanced seat from the quasi-static one (the next step adds them to its
-/// own quasi-static seat), and the Jacobian it used (the next step's Newton iterations hold
-/// it while it contracts their corrections).
+/// own quasi-static seat), the Jacobian it used (the next step's Newton iterations hold
+/// it while it contracts their corrections), and which of its two predictions came closer.
 struct Memory {
     z: usize,
 }
@@ -208,7 +208,9 @@ struct Memory {
 impl Memory {
     /// First a tag and the lengths of the remembered step and of the one before it; per roller
     /// its out-of-plane unknowns at the starts of those two steps, its seat's offsets, A, B and
-    /// C; then the cage's unknowns at the two starts, the cone's offsets and D.
+    /// C; then the cage's unknowns at the two starts, the cone's offsets and D; last, per
+    /// out-of-plane unknown, the prediction the next step takes (1: at the roller's place, 0:
+    /// its own history).
     const TAG: f64 = 5.0;
     const BLOCK: usize = UNKNOWNS * UNKNOWNS;
     const PER_ROLLER: usize = 2 * OUT_OF_PLANE + (UNKNOWNS - SEAT) + 3 * Self::BLOCK;
@@ -225,9 +227,11 @@ impl Memory {
     /// values out of the plane, the quasi-static seat in it) over this step's length `h`
     /// (none: a steady solve, no extrapolation), the cage having turned by `shift` pitches
     /// since the step's start: each roller takes the balanced state the last step found at
-    /// the azimuth it moves to (between the two rollers that bracket it there), out of the
-    /// plane its unknowns, in the plane its seat's offsets, and its Jacobian's blocks; out of
-    /// the plane it adds the rollers' mean change over the last step. Under steady running
+    /// the azimuth it moves to (between the two rollers that bracket it there): in the plane
+    /// its seat's offsets, and its Jacobian's blocks; out of the plane either that state plus
+    /// the rollers' mean change over the last step or its own history extrapolated in time,
+    /// whichever the memory says came closer on the last step (both are kept in `qd` for
+    /// `write` to compare). Under steady running
     /// the balance is a field fixed in the housing's frame that the rollers pass through (the
     /// load zone's), so a roller entering or leaving its load zone starts from the state its
     /// neighbour had there, not from a time extrapolation of its own history (which
@@ -916,13 +920,9 @@ impl QuasiDynamic {
             if let Some(c) = correction.filter(|&c| predicted && c > 1.0 && c > last) {
                 secant = false;
                 refresh |= !fresh;
-                if lambda > MIN_DAMPING {
-                    if let Some(g0) = &base {
-                        balance.correction = c;
-                        lambda *= 0.5;
-                        self.take_back(&mut u, &mut g, &base_u, g0, lambda);
-                        continue;
-                    }
+                if self.take_back(&mut u, &mut g, &base_u, &base, &mut lambda) {
+                    balance.correction = c;
+                    continue;
                 }
             }
             // a Jacobian kept from before that no longer contracts the corrections by a
@@ -968,12 +968,8 @@ impl QuasiDynamic {
             // the other starts (far from the balance) test after any new Jacobian
             if !predicted && correction > last {
                 secant = false;
-                if lambda > MIN_DAMPING {
-                    if let Some(g0) = &base {
-                        lambda *= 0.5;
-                        self.take_back(&mut u, &mut g, &base_u, g0, lambda);
-                        continue;
-                    }
+                if self.take_back(&mut u, &mut g, &base_u, &base, &mut lambda) {
+                    continue;
                 }
             }
             base_u.clone_from(&u);
@@ -1125,8 +1121,8 @@ impl QuasiDynamic {
         col / by
     }
 
-    /// Each roller's 6 x 6 block and its columns of the global equations by
-    /// forward differences of its own contacts (the frame of cone and cage unchanged), about the state
+    /// Each roller's 6 x 6 block and its columns of the global equations by forward
+    /// differences of its own contacts (the frame of cone and cage unchanged), about the state
     /// `y` the last `residuals` evaluated.
     fn blocks(&mut self, inputs: &Inputs, cage: &CageStep, u: &[[f64; UNKNOWNS]], g: &[f64; GLOBALS], sc: &Scales, y: &mut [f64]) {
         let frame = contacts::frame(&self.dynamic.g, &self.dynamic.c, inputs, y);
@@ -1308,17 +1304,30 @@ impl QuasiDynamic {
         self.cage_step_taken = self.cage_correction;
     }
 
-    /// Put `u`, `g` at the share `lambda` of the last full Newton step from its start `base_u`,
-    /// `g0` (back along a step that went too far).
-    fn take_back(&self, u: &mut [[f64; UNKNOWNS]], g: &mut [f64; GLOBALS], base_u: &[[f64; UNKNOWNS]], g0: &[f64; GLOBALS], lambda: f64) {
+    /// Take back a step that went too far: halve its share `lambda` and put `u`, `g` at that
+    /// share of the last full Newton step from its start `base_u`, `base`. False (nothing
+    /// done) where there is no step to take back or its share is already the least.
+    fn take_back(
+        &self,
+        u: &mut [[f64; UNKNOWNS]],
+        g: &mut [f64; GLOBALS],
+        base_u: &[[f64; UNKNOWNS]],
+        base: &Option<[f64; GLOBALS]>,
+        lambda: &mut f64,
+    ) -> bool {
+        let Some(g0) = base.filter(|_| *lambda > MIN_DAMPING) else {
+            return false;
+        };
+        *lambda *= 0.5;
         for (uj, (u0j, dj)) in u.iter_mut().zip(base_u.iter().zip(&self.step_taken)) {
             for k in 0..UNKNOWNS {
-                uj[k] = u0j[k] + lambda * dj[k];
+                uj[k] = u0j[k] + *lambda * dj[k];
             }
         }
         for k in 0..GLOBALS {
-            g[k] = g0[k] + lambda * self.cage_step_taken[k];
+            g[k] = g0[k] + *lambda * self.cage_step_taken[k];
         }
+        true
     }
 
     /// Apply the share `lambda` of the last Newton correction to `u` and `g`.

@@ -744,16 +744,17 @@ fn w25_book_law_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(usize, Option<Cas
         .into_iter()
         .map(|k| {
             let name = W25_DEFLECTION[k];
-            let r = match w25::run_case(&w25::scenario_dir(), name, variant) {
-                Ok(r) => Some(r),
-                Err(e) => {
-                    ledger.failures.push(format!("[W25] `{name}` with contact_law johnson: {e}"));
-                    None
-                }
-            };
-            (k, r)
+            (k, w25_run_or_note(name, variant, "with contact_law johnson", ledger))
         })
         .collect()
+}
+
+/// The [W25] case `name` run as `variant` says, or None with its failure in the ledger
+/// (`what` says how the run differs from the section's).
+fn w25_run_or_note(name: &str, variant: Variant, what: &str, ledger: &mut Ledger) -> Option<CaseResult> {
+    w25::run_case(&w25::scenario_dir(), name, variant)
+        .map_err(|e| ledger.failures.push(format!("[W25] `{name}` {what}: {e}")))
+        .ok()
 }
 
 /// The fidelities the [W25] cases are run at beside the dynamic model's runs of the section:
@@ -775,9 +776,7 @@ fn w25_fidelity_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(&'static str, Vec
                         fidelity: Some(fidelity),
                         ..plan.dynamic_variant(0)
                     };
-                    w25::run_case(&w25::scenario_dir(), name, variant)
-                        .map_err(|e| ledger.failures.push(format!("[W25] `{name}` at fidelity {fidelity}: {e}")))
-                        .ok()
+                    w25_run_or_note(name, variant, &format!("at fidelity {fidelity}"), ledger)
                 })
                 .collect();
             (name, runs)

@@ -49,8 +49,8 @@ const CASES: &[&str] = &[
     "preload_fr45kN_xi0.003",
 ];
 
-/// A variant of a shipped case: another `traction` law, another run length, another contact
-/// law of the bearing. The scenario file's own settings where `None`.
+/// A variant of a shipped case: another `traction` law, another `fidelity`, another run
+/// length, another contact law of the bearing. The scenario file's own settings where `None`.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Variant {
     pub traction: Option<i32>,
