@@ -50,7 +50,8 @@ const CASES: &[&str] = &[
 ];
 
 /// A variant of a shipped case: another `traction` law, another `fidelity`, another run
-/// length, another contact law of the bearing. The scenario file's own settings where `None`.
+/// length, another contact law of the bearing, other real parameters. The scenario file's own
+/// settings where `None` (or not named).
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Variant {
     pub traction: Option<i32>,
@@ -58,6 +59,8 @@ pub(super) struct Variant {
     pub fidelity: Option<i32>,
     pub stop_time: Option<f64>,
     pub contact_law: Option<trb::bearing::ContactLaw>,
+    /// Real FMU parameters set by name (for example `tolerance`, `cageSlipRate`).
+    pub parameters: &'static [(&'static str, f64)],
 }
 
 /// The folder of the [W25] scenarios.
@@ -84,6 +87,10 @@ pub(super) struct CaseResult {
     pub skew_abs_mean: f64,
     pub skew_max: f64,
     pub skew_amplitude: f64,
+    /// signed mean skew of the rollers that carry a cone load, over those rollers and the
+    /// samples (rad): the skew balance of the load zone, which a roller's skew vibration about
+    /// it does not change
+    pub skew_loaded_mean: f64,
     /// signed extremes of any roller at any sample
     pub tilt_lo: f64,
     pub tilt_hi: f64,
@@ -100,6 +107,8 @@ pub(super) struct CaseResult {
     pub qo_max: f64,
     /// largest cone contact load of any roller at any sample (N)
     pub qi_peak: f64,
+    /// mean cage speed (rad/s)
+    pub cage_speed: f64,
     /// fewest and most rollers in contact at any sample
     pub loaded_min: i32,
     pub loaded_max: i32,
@@ -129,6 +138,9 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
     if let Some(t) = variant.stop_time {
         scenario.set_stop_time(t).map_err(invalid)?;
     }
+    for &(parameter, value) in variant.parameters {
+        scenario.set_parameter(parameter, value.into()).map_err(invalid)?;
+    }
     if let Some(law) = variant.contact_law {
         scenario.bearing.bearing.contact_law = law;
     }
@@ -150,6 +162,7 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
     r.xi_deg = i.xi * DEG;
     let n = scenario.n_steps;
     let mut samples = 0.0;
+    let mut loaded_samples = 0.0_f64;
     let (mut t_lo, mut t_hi, mut s_lo, mut s_hi) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
     let mut record = |t: f64, o: &Outputs, second_half: bool, r: &mut CaseResult| {
         r.tilt_series.push((t, o.tilt[0]));
@@ -166,6 +179,11 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
         r.tilt_max = r.tilt_max.max(o.tilt_max);
         r.skew_max = r.skew_max.max(o.skew_max);
         r.qi_peak = r.qi_peak.max(o.qi_max);
+        r.cage_speed += o.cage_speed;
+        for (skew, _) in o.skew.iter().zip(&o.qi).filter(|(_, q)| **q > 0.0) {
+            r.skew_loaded_mean += skew;
+            loaded_samples += 1.0;
+        }
         for (lo, hi, v) in [(&mut r.tilt_lo, &mut r.tilt_hi, &o.tilt), (&mut r.skew_lo, &mut r.skew_hi, &o.skew)] {
             for x in v {
                 *lo = lo.min(*x);
@@ -212,9 +230,11 @@ pub(super) fn run_case(dir: &Path, name: &str, variant: Variant) -> Result<CaseR
         &mut r.reaction_fx,
         &mut r.reaction_m,
         &mut r.qo_max,
+        &mut r.cage_speed,
     ] {
         *v /= samples;
     }
+    r.skew_loaded_mean /= loaded_samples.max(1.0);
     for m in r.moments.iter_mut() {
         *m /= samples;
     }
