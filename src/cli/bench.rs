@@ -57,6 +57,9 @@ pub struct BenchArgs {
     /// Folder of the benchmark scenarios.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/scenarios"))]
     pub scenarios: PathBuf,
+    /// Folder of the real-time cases that have no work-precision window.
+    #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/real_time"))]
+    pub real_time: PathBuf,
     /// Document to update (its generated section); figures go to `figures/` next to it.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/performance.md"))]
     pub out: PathBuf,
@@ -72,6 +75,8 @@ struct ScenarioResult {
     check: Option<(Method, f64)>,
     check_failures: Vec<(Method, String)>,
     runs: Vec<RunResult>,
+    /// The window at fidelities 2 and 0 (`OTHER_FIDELITIES`), default settings.
+    fidelities: Vec<(i32, Result<Measured, String>)>,
 }
 
 struct RunResult {
@@ -112,6 +117,9 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     let started = Instant::now();
     let repeats = if args.quick { 1 } else { args.repeats };
     let scenarios = load_scenarios(&args.scenarios, args.filter.as_deref(), args.quick)?;
+    if scenarios.is_empty() {
+        return Err(CliError::invalid(format!("no benchmark scenario in {}", args.scenarios.display())));
+    }
     let mut results = Vec::new();
     for (name, scenario) in scenarios {
         results.push(bench_scenario(name, scenario, repeats, args.quick)?);
@@ -124,7 +132,7 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     } else {
         (
             long_runs(&results, args.long_seconds)?,
-            real_time::measure(&results, args.long_seconds),
+            real_time::measure(&results, &args.real_time, args.filter.as_deref(), args.long_seconds)?,
         )
     };
     let figures = args
@@ -144,7 +152,8 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The scenario files of the folder (sorted by name); `quick` shortens each to 10 steps.
+/// The scenario files of the folder whose names contain `filter` (sorted by name; none is
+/// no error); `quick` shortens each to 10 steps.
 fn load_scenarios(dir: &Path, filter: Option<&str>, quick: bool) -> Result<Vec<(String, Scenario)>, CliError> {
     let entries = std::fs::read_dir(dir).map_err(|e| CliError::invalid(format!("cannot read {}: {e}", dir.display())))?;
     let mut files: Vec<PathBuf> = entries
@@ -164,9 +173,6 @@ fn load_scenarios(dir: &Path, filter: Option<&str>, quick: bool) -> Result<Vec<(
             scenario.stop_time = scenario.start_time + scenario.n_steps as f64 * scenario.step;
         }
         out.push((name, scenario));
-    }
-    if out.is_empty() {
-        return Err(CliError::invalid(format!("no benchmark scenario in {}", dir.display())));
     }
     Ok(out)
 }
@@ -195,29 +201,7 @@ fn bench_scenario(name: String, scenario: Scenario, repeats: usize, quick: bool)
     }
     let mut runs = Vec::new();
     for method in precision::sweep(quick) {
-        let mut walls = Vec::new();
-        let mut outcome = Err(String::new());
-        for _ in 0..repeats {
-            match precision::run(&scenario, &method) {
-                Ok(t) => {
-                    walls.push(t.wall);
-                    let long = t.wall > LONG_RUN;
-                    outcome = Ok(t);
-                    if long {
-                        break;
-                    }
-                }
-                Err(e) => {
-                    outcome = Err(e);
-                    break;
-                }
-            }
-        }
-        let outcome = outcome.map(|trace| Measured {
-            wall: precision::median(&walls),
-            errors: precision::errors(&trace, &reference),
-            trace,
-        });
+        let outcome = timed(&scenario, &method, repeats, &reference);
         match &outcome {
             Ok(m) => println!(
                 "  {} {}: {:.3} s, {} steps, error {:.2e}, torque/skew {:.2e}",
@@ -232,6 +216,18 @@ fn bench_scenario(name: String, scenario: Scenario, repeats: usize, quick: bool)
         }
         runs.push(RunResult { method, outcome });
     }
+    // the other fidelities at default settings, at the window's communication step
+    let fidelities = OTHER_FIDELITIES
+        .iter()
+        .map(|&(fidelity, what)| {
+            let outcome = timed(&at_fidelity(&scenario, fidelity), &default_method(&scenario), repeats, &reference);
+            match &outcome {
+                Ok(m) => println!("  {what}: {:.3} s, error {:.2e}", m.wall, precision::max_error(&m.errors)),
+                Err(e) => println!("  {what}: failed: {e}"),
+            }
+            (fidelity, outcome)
+        })
+        .collect();
     Ok(ScenarioResult {
         name,
         scenario,
@@ -240,8 +236,35 @@ fn bench_scenario(name: String, scenario: Scenario, repeats: usize, quick: bool)
         check,
         check_failures,
         runs,
+        fidelities,
     })
 }
+
+/// `scenario` run with `method` `repeats` times (once where a run is long): the median wall
+/// time, the last trace and its errors against `reference`.
+fn timed(scenario: &Scenario, method: &Method, repeats: usize, reference: &Trace) -> Result<Measured, String> {
+    let mut walls = Vec::new();
+    let mut trace = None;
+    for _ in 0..repeats {
+        let t = precision::run(scenario, method)?;
+        walls.push(t.wall);
+        let long = t.wall > LONG_RUN;
+        trace = Some(t);
+        if long {
+            break;
+        }
+    }
+    let trace = trace.ok_or_else(|| "no run".to_string())?;
+    Ok(Measured {
+        wall: precision::median(&walls),
+        errors: precision::errors(&trace, reference),
+        trace,
+    })
+}
+
+/// The fidelities run beside the dynamic model's sweep in every work-precision window, with
+/// their names in the report.
+const OTHER_FIDELITIES: [(i32, &str); 2] = [(2, "quasi-dynamic (fidelity 2)"), (0, "quasi-static (fidelity 0)")];
 
 /// Medians of the kernels of the targets table (seconds).
 struct Kernels {
@@ -415,6 +438,20 @@ fn long_run_scenario(scenario: &Scenario, seconds: f64) -> Scenario {
     s
 }
 
+/// `scenario` with the parameter `fidelity` set to `fidelity`.
+pub(super) fn at_fidelity(scenario: &Scenario, fidelity: i32) -> Scenario {
+    let mut s = scenario.clone();
+    let (vr, row) = trb::variables::find("fidelity", s.bearing.bearing.roller_count).expect("fidelity in the model description");
+    s.parameters.retain(|(v, _)| v.name != "fidelity");
+    let var = crate::cli::scenario::Var {
+        vr,
+        name: "fidelity".to_string(),
+        ty: row.ty,
+    };
+    s.parameters.push((var, crate::cli::scenario::Value::Integer(fidelity)));
+    s
+}
+
 fn sci(v: f64) -> String {
     format!("{v:.1e}")
 }
@@ -461,6 +498,7 @@ fn document(
     );
     targets(&mut d, results, k, runs.long);
     real_time::write(&mut d, runs.real_time);
+    real_time::write_agreement(&mut d, runs.real_time);
     speedups(&mut d, results);
     slice_table(&mut d, runs.slices);
     let _ = writeln!(d, "### Work-precision diagrams\n");
@@ -473,7 +511,11 @@ fn document(
          over {} outputs: {}. Torque/skew error: the largest over friction torque, mean \
          skew and roller 1's skew. Wall time: the whole run, building the element and the \
          quasi-static start included. Errors below the reference's resolution (its \
-         difference from the check run) are drawn at that resolution.\n",
+         difference from the check run) are drawn at that resolution. The quasi-dynamic \
+         (fidelity 2) and quasi-static (fidelity 0) models at default settings are single points, \
+         run at the window's communication step: their error is what the model leaves out (the \
+         contact and skew vibrations; at fidelity 0 all dynamics and the lubricated skew), not \
+         an integration error.\n",
         OUTPUTS.len(),
         OUTPUTS.iter().map(|o| format!("`{}`", o.0)).collect::<Vec<_>>().join(", ")
     );
@@ -746,6 +788,12 @@ fn scenario_section(d: &mut String, r: &ScenarioResult, figures: &Path) -> Resul
             series.push(Series::new(f.2, points));
         }
     }
+    for (fidelity, outcome) in &r.fidelities {
+        if let Ok(m) = outcome {
+            let point = (precision::max_error(&m.errors).max(floor).max(1e-16), m.wall);
+            series.push(Series::new(&format!("fidelity {fidelity}"), vec![point]));
+        }
+    }
     if !series.is_empty() {
         let name = format!("bench_{}.svg", r.name);
         let svg = svg::chart(
@@ -760,30 +808,36 @@ fn scenario_section(d: &mut String, r: &ScenarioResult, figures: &Path) -> Resul
         std::fs::write(&path, svg).map_err(|e| CliError::failed(format!("cannot write {}: {e}", path.display())))?;
         let _ = writeln!(d, "![{name}](figures/{name})\n");
     }
+    let cells = |outcome: &Result<Measured, String>| match outcome {
+        Ok(m) => {
+            let e = precision::max_error(&m.errors);
+            let worst = m.errors.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |w| w.0);
+            let shown = |v: f64| if v < floor { format!("< {}", sci(floor)) } else { sci(v) };
+            vec![
+                format!("{:.3}", m.wall),
+                format!("{:.0}", m.wall / window),
+                m.trace.steps.to_string(),
+                m.trace.rhs.to_string(),
+                m.trace.rejected.to_string(),
+                shown(e),
+                shown(precision::torque_skew_error(&m.errors)),
+                format!("`{}`", OUTPUTS[worst].0),
+            ]
+        }
+        Err(e) => std::iter::once(format!("failed: {e}"))
+            .chain(std::iter::repeat_n(String::new(), 7))
+            .collect(),
+    };
     let mut rows = Vec::new();
     for x in &r.runs {
         let mut row = vec![x.method.short_family().to_string(), x.method.label()];
-        match &x.outcome {
-            Ok(m) => {
-                let e = precision::max_error(&m.errors);
-                let worst = m.errors.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |w| w.0);
-                let shown = |v: f64| if v < floor { format!("< {}", sci(floor)) } else { sci(v) };
-                row.extend([
-                    format!("{:.3}", m.wall),
-                    format!("{:.0}", m.wall / window),
-                    m.trace.steps.to_string(),
-                    m.trace.rhs.to_string(),
-                    m.trace.rejected.to_string(),
-                    shown(e),
-                    shown(precision::torque_skew_error(&m.errors)),
-                    format!("`{}`", OUTPUTS[worst].0),
-                ]);
-            }
-            Err(e) => {
-                row.push(format!("failed: {e}"));
-                row.extend(std::iter::repeat_n(String::new(), 7));
-            }
-        }
+        row.extend(cells(&x.outcome));
+        rows.push(row);
+    }
+    for (fidelity, outcome) in &r.fidelities {
+        let what = OTHER_FIDELITIES.iter().find(|f| f.0 == *fidelity).map_or("", |f| f.1);
+        let mut row = vec![what.to_string(), "default".to_string()];
+        row.extend(cells(outcome));
         rows.push(row);
     }
     d.push_str(&table(

@@ -148,6 +148,39 @@ pub struct Trace {
     pub rejected: i32,
     /// Per communication point, the values of [`OUTPUTS`].
     pub values: Vec<[f64; OUTPUTS.len()]>,
+    /// Per communication point, what a user reads of the rollers.
+    pub readings: Vec<Reading>,
+}
+
+/// What a user at the communication step reads of the rollers at one point: mean and
+/// largest |skew| and |tilt| over the rollers (rad), friction torque (N m), cage speed
+/// (rad/s), largest cone and cup loads of any roller (N).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Reading {
+    pub skew_abs_mean: f64,
+    pub skew_max: f64,
+    pub tilt_abs_mean: f64,
+    pub tilt_max: f64,
+    pub torque: f64,
+    pub cage_speed: f64,
+    pub qi_max: f64,
+    pub qo_max: f64,
+}
+
+impl Reading {
+    fn of(o: &trb::model::Outputs) -> Reading {
+        let z = o.skew.len().max(1) as f64;
+        Reading {
+            skew_abs_mean: o.skew.iter().map(|v| v.abs()).sum::<f64>() / z,
+            skew_max: o.skew_max,
+            tilt_abs_mean: o.tilt.iter().map(|v| v.abs()).sum::<f64>() / z,
+            tilt_max: o.tilt_max,
+            torque: o.friction_torque,
+            cage_speed: o.cage_speed,
+            qi_max: o.qi_max,
+            qo_max: o.qo_max,
+        }
+    }
 }
 
 /// Run `scenario` with `method` under the stepping semantics of `trb simulate` (set the
@@ -164,9 +197,10 @@ pub fn run(scenario: &Scenario, method: &Method) -> Result<Trace, String> {
     let started = Instant::now();
     let mut sim = prepare(&s).map_err(|e| e.message)?;
     let mut values = Vec::with_capacity(s.n_steps + 1);
+    let mut readings = Vec::with_capacity(s.n_steps + 1);
     let mut u: Vec<f64> = s.inputs.iter().map(|(_, sig)| sig.at(s.time(0))).collect();
     let mut read = |sim: &mut trb::simulation::Simulation, t: f64| -> Result<(), String> {
-        sim.outputs().map_err(|e| format!("t = {t:.6} s: {e}"))?;
+        readings.push(Reading::of(sim.outputs().map_err(|e| format!("t = {t:.6} s: {e}"))?));
         let mut row = [0.0; OUTPUTS.len()];
         for (r, vr) in row.iter_mut().zip(&vrs) {
             *r = sim.last_real(*vr).map_err(|e| format!("{e:?}"))?;
@@ -187,6 +221,7 @@ pub fn run(scenario: &Scenario, method: &Method) -> Result<Trace, String> {
         rhs: int(var::INTEGRATOR_RHS),
         rejected: int(var::INTEGRATOR_REJECTED),
         values,
+        readings,
     })
 }
 
@@ -238,6 +273,7 @@ mod tests {
             rhs: 0,
             rejected: 0,
             values,
+            readings: Vec::new(),
         }
     }
 
