@@ -1387,7 +1387,7 @@ mod tests {
 
     /// R_s / rho_p of a loaded bearing, rho_p = r_f / cos(a_f) from the geometry's rib contact.
     fn end_radius_over_rib(b: &Bearing) -> f64 {
-        let g = crate::geometry::Geometry::new(b, &crate::model::Parameters::from_bearing(b));
+        let g = crate::geometry::Geometry::new(b, &crate::geometry::RollerProfile::of_bearing(b));
         let f = g.flange.as_ref().expect("a rib");
         b.roller_end_radius / (f.rib_radius / libm::cos(b.flange_angle.unwrap()))
     }

@@ -468,7 +468,7 @@ mod tests {
     /// A cup contact line 20 mm long at 0.1 m from the axis (concave, radius 0.1 m).
     fn line() -> ContactLine {
         let b = crate::bearing::Bearing::preset("TRB130x230").unwrap();
-        let mut line = crate::geometry::Geometry::new(&b, &crate::model::Parameters::from_bearing(&b)).cup;
+        let mut line = crate::geometry::Geometry::new(&b, &crate::geometry::RollerProfile::of_bearing(&b)).cup;
         line.point = vec![[0.0, 0.1], [0.02, 0.1]];
         line.raceway_curvature_radius = vec![-0.1; 2];
         line

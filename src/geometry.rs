@@ -15,11 +15,28 @@
 
 use crate::bearing::{Bearing, ContactLaw};
 use crate::contact;
-use crate::model::Parameters;
 
 /// Floor of the rib/end-sphere relative curvature in the circumferential direction, as a
 /// fraction of the sphere's curvature.
 pub const MIN_RELATIVE_CURVATURE: f64 = 0.01;
+
+/// What the geometry takes besides the bearing description: the roller's slice count and
+/// its crown drop at the ends (m), the element's parameters `slices` and `crown_drop`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerProfile {
+    pub slices: usize,
+    pub crown_drop: f64,
+}
+
+impl RollerProfile {
+    /// The bearing file's slice count and crown drop (the parameters' start values).
+    pub fn of_bearing(b: &Bearing) -> RollerProfile {
+        RollerProfile {
+            slices: b.slices,
+            crown_drop: b.crown_drop,
+        }
+    }
+}
 
 /// A point or vector in the axial plane: `[x, r]`.
 pub type Vec2 = [f64; 2];
@@ -182,7 +199,7 @@ impl Geometry {
         p(worst[0]).max(p(worst[1]))
     }
 
-    pub fn new(b: &Bearing, p: &Parameters) -> Geometry {
+    pub fn new(b: &Bearing, p: &RollerProfile) -> Geometry {
         let s = p.slices;
         let ai = b.cone_angle;
         let ao = b.cup_angle;
@@ -361,8 +378,7 @@ mod tests {
 
     fn geometry(name: &str) -> Geometry {
         let b = Bearing::preset(name).unwrap();
-        let p = Parameters::from_bearing(&b);
-        Geometry::new(&b, &p)
+        Geometry::new(&b, &RollerProfile::of_bearing(&b))
     }
 
     #[test]

@@ -209,6 +209,14 @@ impl Parameters {
         self.rib_coulomb().unwrap_or(self.mu)
     }
 
+    /// The roller's slice count and crown drop, what the geometry takes from the parameters.
+    pub fn roller_profile(&self) -> crate::geometry::RollerProfile {
+        crate::geometry::RollerProfile {
+            slices: self.slices,
+            crown_drop: self.crown_drop,
+        }
+    }
+
     /// The oil's viscosity against its bulk temperature.
     pub fn oil_grade(&self) -> crate::tribology::OilGrade {
         crate::tribology::OilGrade::new(self.oil_nu40, self.oil_nu100, self.oil_density)

@@ -139,7 +139,7 @@ fn catalogue_sets_give_their_rating_and_e_on_one_apex() {
         let b = Bearing::from_json(&text).unwrap_or_else(|err| panic!("{name}: {err}"));
         let rating = BearingRating::new(&b, b.slices).c_r;
         let e_back = 1.5 * b.cup_angle.tan();
-        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
         let apexes = g.apexes().unwrap();
         eprintln!(
             "{name}: Z {}, D_we {:.3} mm, L_we {:.3} mm, fill {:.3}, bar {:.2} mm; C_r {rating:.0} N ({c_r}); e {e_back:.6} ({e}); apexes {:.2e} mm apart",

@@ -8,7 +8,7 @@ mod common;
 
 use common::{amplitude, peak};
 use trb::bearing::Bearing;
-use trb::model::{ModelError, Outputs, Parameters};
+use trb::model::{ModelError, Outputs};
 use trb::simulation::Simulation;
 use trb::variables as var;
 
@@ -145,7 +145,7 @@ fn at_fidelity_0_the_load_leaves_the_roller_on_the_defect() {
 /// D cos α = r_o − r_i).
 fn outer_race_frequency() -> f64 {
     let b = Bearing::preset(PRESET).unwrap();
-    let g = trb::geometry::Geometry::new(&b, &Parameters::from_bearing(&b));
+    let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
     let mid = g.slices / 2;
     let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
     b.roller_count as f64 * 3500.0 / 60.0 * ri / (ri + ro)
@@ -266,7 +266,7 @@ fn the_peak_forces_converge_under_a_halved_tolerance() {
 #[test]
 fn the_spall_size_reads_from_the_time_between_entry_and_strike() {
     let b = Bearing::preset(PRESET).unwrap();
-    let g = trb::geometry::Geometry::new(&b, &Parameters::from_bearing(&b));
+    let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
     let mid = g.slices / 2;
     let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
     let omega_c = 3500.0 * RPM * ri / (ri + ro);
@@ -380,7 +380,7 @@ fn record(ints: &[(u32, i32)], reals: &[(u32, f64)], dt: f64, n: usize) -> Recor
 /// ball spin, with d_m = r_i + r_o, D cos α = r_o − r_i).
 fn kinematic() -> (f64, f64, f64, f64) {
     let b = Bearing::preset(PRESET).unwrap();
-    let g = trb::geometry::Geometry::new(&b, &Parameters::from_bearing(&b));
+    let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
     let mid = g.slices / 2;
     let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
     let fs = 3500.0 / 60.0;

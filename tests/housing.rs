@@ -93,7 +93,7 @@ fn the_cup_on_its_housing_rings_at_the_roller_passes_and_at_its_natural_frequenc
     use trb::bearing::Bearing;
     use trb::model::Parameters;
     let b = Bearing::preset("TRB130x230").unwrap();
-    let g = trb::geometry::Geometry::new(&b, &Parameters::from_bearing(&b));
+    let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
     let mid = g.slices / 2;
     let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
     let pass = 17.0 * 3500.0 / 60.0 * ri / (ri + ro);

@@ -13,7 +13,7 @@ const PUBLISHED_INCONSISTENT: &[(&str, f64)] = &[("TRB130x230-W25", 521.0), ("32
 fn every_tapered_preset_has_one_apex_or_states_its_mismatch() {
     for (name, _) in PRESETS {
         let b = Bearing::preset(name).unwrap();
-        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
         let Some(a) = g.apexes() else {
             continue;
         };

@@ -233,7 +233,7 @@ fn the_ribs_share_of_the_skew_does_not_follow_the_load() {
 fn the_geometrys_closed_form_is_the_files() {
     for k in RATIOS {
         let (b, file) = bearing(k);
-        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
         let own = g.rib_skew(b.roller_end_radius, 0.1).expect("a rib");
         let here = Rib::of(&file).skew(0.1);
         assert!((own / here - 1.0).abs() < 1e-9, "R_s/rho_p {k}: {own} against {here}");

@@ -26,8 +26,7 @@
 
 use tiny_skia::{Color, FillRule, LineCap, Mask, Paint, Path, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 use trb::bearing::{Bearing, Kind};
-use trb::geometry::{Geometry, Vec2};
-use trb::model::Parameters;
+use trb::geometry::{Geometry, RollerProfile, Vec2};
 
 /// Width and height of the icon (px).
 pub const SIZE: u32 = 256;
@@ -95,7 +94,7 @@ struct Envelope {
 
 impl Section {
     fn new(b: &Bearing) -> Section {
-        let g = Geometry::new(b, &Parameters::from_bearing(b));
+        let g = Geometry::new(b, &RollerProfile::of_bearing(b));
         let roller = roller_outline(&g);
         let (x_left, x_right) = axial_span(b, &roller);
         let inner = 0.5 * b.bore;

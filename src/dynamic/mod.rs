@@ -377,7 +377,7 @@ fn integrator(g: &Geometry, c: &contacts::Constants, params: &Parameters, speed:
 
 impl Dynamic {
     pub fn new(bearing: &Bearing, params: &Parameters) -> Result<Dynamic, ModelError> {
-        let g = Geometry::new(bearing, params);
+        let g = Geometry::new(bearing, &params.roller_profile());
         let c = contacts::Constants::new(bearing, params, &g);
         let speed = bearing.speed.abs().max(100.0);
         let ig = integrator(&g, &c, params, speed);

@@ -395,7 +395,7 @@ pub struct QuasiStatic {
 
 impl QuasiStatic {
     pub fn new(bearing: &Bearing, params: &Parameters) -> Result<QuasiStatic, ModelError> {
-        let geometry = Geometry::new(bearing, params);
+        let geometry = Geometry::new(bearing, &params.roller_profile());
         let z = geometry.z;
         let ls = 0.5 * geometry.length;
         let cone_chi: Vec<f64> = geometry

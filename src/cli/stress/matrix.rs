@@ -75,7 +75,7 @@ impl Preset {
         let ndm = if bearing.kind == Kind::Tapered { 700_000.0 } else { 3_500_000.0 };
         let n_lim = ndm / dpw * std::f64::consts::PI / 30.0;
         let speed = bearing.speed;
-        let g = trb::geometry::Geometry::new(&bearing, &trb::model::Parameters::from_bearing(&bearing));
+        let g = trb::geometry::Geometry::new(&bearing, &trb::geometry::RollerProfile::of_bearing(&bearing));
         let (ri, ro) = g.pitch_contact_radii();
         let cage_ratio = (1.0 - bearing.cage_slip_rate) * ri / (ri + ro);
         let rc = g.center[1] + g.cm_offset * g.axis[1];

@@ -16,7 +16,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 use trb::bearing::Bearing;
-use trb::model::{Outputs, Parameters};
+use trb::model::Outputs;
 use trb::simulation::Simulation;
 use trb::variables as var;
 
@@ -130,7 +130,7 @@ struct Kinematics {
 
 impl Kinematics {
     fn new(b: &Bearing, speed_rpm: f64) -> Kinematics {
-        let g = trb::geometry::Geometry::new(b, &Parameters::from_bearing(b));
+        let g = trb::geometry::Geometry::new(b, &trb::geometry::RollerProfile::of_bearing(b));
         let mid = g.slices / 2;
         let (ri, ro) = (g.cone.raceway_radius[mid], g.cup.raceway_radius[mid]);
         let d = 2.0 * g.slice_radius[mid];

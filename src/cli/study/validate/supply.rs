@@ -372,7 +372,7 @@ fn end_radius_table(plan: &Plan) -> Result<String, CliError> {
         let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| CliError::failed(format!("{PRESET}: {e}")))?;
         v["rollers"]["end_radius_ratio"] = serde_json::json!(k);
         let b = Bearing::from_json(&v.to_string()).map_err(|e| CliError::failed(format!("{PRESET}, R_s/rho_p {k}: {e}")))?;
-        let g = trb::geometry::Geometry::new(&b, &trb::model::Parameters::from_bearing(&b));
+        let g = trb::geometry::Geometry::new(&b, &trb::geometry::RollerProfile::of_bearing(&b));
         let closed = |mu: f64| g.rib_skew(b.roller_end_radius, mu).map_or("—".to_string(), |p| num(p.to_degrees()));
         let mut row = vec![format!("{k:.2}"), num(b.roller_end_radius * 1e3)];
         for &(rpm, fa) in &END_RADIUS_POINTS {
