@@ -381,6 +381,34 @@ mod tests {
         Geometry::new(&b, &RollerProfile::of_bearing(&b))
     }
 
+    /// R_s / rho_p of a loaded bearing, rho_p = r_f / cos(a_f) from the geometry's rib contact.
+    fn end_radius_over_rib(b: &Bearing) -> f64 {
+        let g = Geometry::new(b, &RollerProfile::of_bearing(b));
+        let f = g.flange.as_ref().expect("a rib");
+        b.roller_end_radius / (f.rib_radius / libm::cos(b.flange_angle.unwrap()))
+    }
+
+    #[test]
+    fn the_end_radius_follows_its_ratio_to_the_rib() {
+        // 32008 gives neither: the default ratio
+        let b = Bearing::preset("32008").unwrap();
+        assert!((end_radius_over_rib(&b) - crate::bearing::DEFAULT_END_RADIUS_RATIO).abs() < 1e-12);
+        let text = crate::bearing::PRESETS.iter().find(|(n, _)| *n == "32008").expect("a preset").1;
+        let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+        let mut last = 0.0;
+        for k in [0.75, 0.85, 0.9, 0.95] {
+            v["rollers"]["end_radius_ratio"] = serde_json::json!(k);
+            let b = Bearing::from_json(&v.to_string()).unwrap();
+            assert!((end_radius_over_rib(&b) - k).abs() < 1e-12, "{k}");
+            assert!(b.roller_end_radius > last);
+            last = b.roller_end_radius;
+            if k == 0.9 {
+                let d = Bearing::preset("32008").unwrap();
+                assert_eq!(b.roller_end_radius.to_bits(), d.roller_end_radius.to_bits());
+            }
+        }
+    }
+
     #[test]
     fn cylinder_mass_properties_match_closed_form() {
         let (r, l, rho) = (0.01, 0.03, 7850.0);

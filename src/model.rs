@@ -1147,13 +1147,13 @@ pub const PRESSURE_RANGE: f64 = 2.0;
 /// the quasi-static solution for its inputs, before it integrates), so both refuse the
 /// same loads with the same message.
 pub fn load_within_range(out: &Outputs, report: &SolveReport) -> Result<(), ModelError> {
-    let limit = PRESSURE_RANGE * crate::rating::STATIC_LIMIT_STRESS;
+    let limit = PRESSURE_RANGE * crate::bearing::rating::STATIC_LIMIT_STRESS;
     if out.pressure_max > limit {
         return Err(ModelError::OutOfRange {
             message: format!(
                 "the largest contact pressure is {:.0} MPa, more than {PRESSURE_RANGE} times the static limit of {:.0} MPa of ISO 76 (static safety factor s0 = {:.3}); the contact laws are elastic and rest on Hertz's half-space, which ends there (docs/model.md, \"The model's range\"); reduce the load",
                 out.pressure_max * 1e-6,
-                crate::rating::STATIC_LIMIT_STRESS * 1e-6,
+                crate::bearing::rating::STATIC_LIMIT_STRESS * 1e-6,
                 out.safety_s0
             ),
         });

@@ -251,7 +251,7 @@ pub struct Dynamic {
     /// The contacts' last evaluation, which the outputs come from.
     eval: Evaluation,
     /// ISO 281 / ISO/TS 16281 ratings (one lamina per slice).
-    rating: crate::rating::BearingRating,
+    rating: crate::bearing::rating::BearingRating,
 }
 
 /// The contacts' last evaluation: per-roller records, slice loads (per roller: cone slices,
@@ -395,7 +395,7 @@ impl Dynamic {
                 });
         Ok(Dynamic {
             eval: Evaluation::new(g.z, params.slices),
-            rating: crate::rating::BearingRating::new(bearing, params.slices),
+            rating: crate::bearing::rating::BearingRating::new(bearing, params.slices),
             g,
             p: params.clone(),
             c,

@@ -384,7 +384,7 @@ pub struct QuasiStatic {
     /// friction model (at convergence: of the solution).
     slice_load_buffer: Vec<f64>,
     /// ISO 281 / ISO/TS 16281 ratings of the bearing with one lamina per slice.
-    rating: crate::rating::BearingRating,
+    rating: crate::bearing::rating::BearingRating,
     /// Scratch for the unknowns of a solve and for one roller's slice loads (allocated once).
     x: Vec<f64>,
     local_scratch: Vec<f64>,
@@ -433,7 +433,7 @@ impl QuasiStatic {
             .skew_model
             .then(|| skew::SkewSetup::new(bearing, &geometry, params.pocket_clearance, cage_ratio, spin_ratio, k_ref));
         Ok(QuasiStatic {
-            rating: crate::rating::BearingRating::new(bearing, params.slices),
+            rating: crate::bearing::rating::BearingRating::new(bearing, params.slices),
             skew,
             slice_load_buffer: vec![0.0; 2 * geometry.slices * z],
             x: Vec::new(),
@@ -1994,7 +1994,7 @@ impl QuasiStatic {
     }
 
     /// The bearing's load ratings.
-    pub fn rating(&self) -> &crate::rating::BearingRating {
+    pub fn rating(&self) -> &crate::bearing::rating::BearingRating {
         &self.rating
     }
 

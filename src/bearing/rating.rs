@@ -56,7 +56,7 @@
 //! reference life is the *basic* reference rating life (a1 = 1, a_ISO = 1): lubrication and
 //! contamination enter through an a_ISO a user multiplies in.
 
-use crate::bearing::Bearing;
+use super::file::Bearing;
 use std::f64::consts::PI;
 
 /// Life factor of ISO 281 for tapered and cylindrical roller bearings.

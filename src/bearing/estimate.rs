@@ -58,12 +58,13 @@
 //!
 //! Everything else a catalogue does not give is the documented default of [`defaults`].
 
-use crate::bearing::{
+// The catalogue data is a section of the bearing file (`super::file`), read with its types.
+pub use super::file::Catalogue;
+use super::file::{
     BearingFile, CageFile, ContactLaw, EnvelopeFile, FlangeFile, FrictionFile, Kind, LubricantFile, LubricationModel, MaterialFile,
     MaterialsFile, OperatingPointFile, PreloadFile, RacewayFile, RollersFile, SolverFile,
 };
-use crate::rating::{basic_dynamic_load_rating, basic_static_load_rating, roller_length_for_rating, RatingGeometry};
-use serde::{Deserialize, Serialize};
+use super::rating::{basic_dynamic_load_rating, basic_static_load_rating, roller_length_for_rating, RatingGeometry};
 use std::fmt;
 
 /// Roller mean diameter over the ring section D − d (rule 3).
@@ -84,41 +85,6 @@ pub const CROWN_DESIGN_PRESSURE: f64 = 1000e6;
 /// The range of e the method takes: contact angles of 7.6–33.7 deg, the ISO 355 angle
 /// series 2 to 7 (e = 0.2 .. 1.0 spans them with margin).
 pub const E_RANGE: (f64, f64) = (0.2, 1.0);
-
-/// Catalogue data of a single-row tapered roller bearing (mm, N), the catalogues' symbols.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Catalogue {
-    /// Bore diameter d, mm.
-    #[serde(rename = "d_mm")]
-    pub d: f64,
-    /// Outside diameter D, mm.
-    #[serde(rename = "D_mm")]
-    pub outside_d: f64,
-    /// Total width T, mm.
-    #[serde(rename = "T_mm")]
-    pub t: f64,
-    /// Cone (inner ring) width B, mm (it may exceed T, as in inch series, up to 1.5 T).
-    #[serde(rename = "B_mm", default, skip_serializing_if = "Option::is_none")]
-    pub b: Option<f64>,
-    /// Cup (outer ring) width C, mm (at most T).
-    #[serde(rename = "C_mm", default, skip_serializing_if = "Option::is_none")]
-    pub c: Option<f64>,
-    /// Basic dynamic radial load rating C_r, N.
-    #[serde(rename = "Cr_N")]
-    pub c_r: f64,
-    /// Calculation factor e (ISO 281: e = 1.5 tan α).
-    pub e: f64,
-    /// Axial load factor Y (ISO 281: Y = 0.4 cot α), checked against e.
-    #[serde(rename = "Y", default, skip_serializing_if = "Option::is_none")]
-    pub y: Option<f64>,
-    /// Basic static radial load rating C_0r, N (reported against the geometry's).
-    #[serde(rename = "C0r_N", default, skip_serializing_if = "Option::is_none")]
-    pub c_0r: Option<f64>,
-    /// Number of rollers, when the maker gives it.
-    #[serde(rename = "Z", default, skip_serializing_if = "Option::is_none")]
-    pub z: Option<i64>,
-}
 
 /// One fault of catalogue data: the field by its catalogue symbol and what is wrong.
 #[derive(Debug, Clone, PartialEq)]
