@@ -292,7 +292,7 @@ impl Catalogue {
         let axis = alpha - half;
         let extent = length * libm::cos(axis) + dw * libm::sin(axis);
         // The roller must fit the envelope: axially the width T, radially the ring section
-        // about the pitch circle (the reader's checks, `bearing.rs`), with 0.1 % to spare.
+        // about the pitch circle (the reader's checks, `read.rs`), with 0.1 % to spare.
         let l_max_axial = (self.t - dw * libm::sin(axis)) / libm::cos(axis);
         let l_max_radial = 2.0 * (0.999 * 0.25 * section - 0.5 * dw * libm::cos(axis)) / libm::sin(axis);
         let l_max = l_max_axial.min(l_max_radial);

@@ -48,7 +48,7 @@ use trb::variables::{self as var, Causality, VarType};
 #[derive(Debug, Clone)]
 pub struct Preset {
     pub bearing: Bearing,
-    /// Basic static radial load rating C0r (N), ISO 76 (`rating.C0`, `src/rating.rs`).
+    /// Basic static radial load rating C0r (N), ISO 76 (`rating.C0`, `src/bearing/rating.rs`).
     pub c0: f64,
     /// Axial load equivalent to C0r (N): P0 = Y0 Fa with Y0 = 0.22 cot a (ISO 76), so
     /// Fa0 = C0r tan a / 0.22. A cylindrical bearing carries no axial load: 0.
