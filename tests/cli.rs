@@ -812,3 +812,67 @@ fn bearing_estimate_builds_a_bearing_from_catalogue_data() {
         }
     }
 }
+
+/// The `<ScalarVariable ...>` line of `name` and the type element on the line after it.
+fn scalar_variable<'a>(xml: &'a str, name: &str) -> (&'a str, &'a str) {
+    let needle = format!(r#"<ScalarVariable name="{name}" "#);
+    let mut lines = xml.lines().skip_while(|l| !l.contains(&needle));
+    let head = lines.next().unwrap_or_else(|| panic!("no variable {name}"));
+    (head, lines.next().unwrap())
+}
+
+#[test]
+fn fmu_enumerations_as_integers_declares_every_enumeration_an_integer() {
+    let s = Scratch::new("fmuints");
+    let lib = fake_library(&s);
+    let (plain, ints) = (s.path("plain.fmu"), s.path("ints.fmu"));
+    assert!(trb(&["fmu", "--library", p(&lib), "--out", p(&plain)]).status.success());
+    let o = trb(&["fmu", "--enumerations-as-integers", "--library", p(&lib), "--out", p(&ints)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (plain, ints) = (read_zip(&plain), read_zip(&ints));
+    let xml_of = |e: &std::collections::BTreeMap<String, Vec<u8>>| String::from_utf8(e["modelDescription.xml"].clone()).unwrap();
+    let (plain_xml, xml) = (xml_of(&plain), xml_of(&ints));
+    assert!(
+        !plain.contains_key("resources/packaging.json"),
+        "a plain FMU has no packaging options"
+    );
+    assert_eq!(ints["resources/packaging.json"], b"{\n  \"enumerations_as_integers\": true\n}\n");
+    assert!(
+        !xml.contains("<Enumeration") && !xml.contains("<TypeDefinitions>"),
+        "an Enumeration is left"
+    );
+
+    let bearing = Bearing::default_preset();
+    let mut enumerations = 0;
+    for (vr, name, row) in trb::variables::expanded(bearing.roller_count) {
+        let (plain_head, plain_type) = scalar_variable(&plain_xml, &name);
+        let (head, ty) = scalar_variable(&xml, &name);
+        assert!(head.contains(&format!(r#"valueReference="{vr}""#)), "{head}");
+        if row.enumeration.is_none() {
+            assert_eq!((head, ty), (plain_head, plain_type), "{name} changed");
+            continue;
+        }
+        enumerations += 1;
+        // Same range and start; the items' values and names in the description.
+        let declared = format!(r#" declaredType="{}""#, row.enumeration.unwrap().name);
+        assert_eq!(ty, plain_type.replace("<Enumeration", "<Integer").replace(&declared, ""), "{name}");
+        assert!(ty.contains(r#" min="0""#) && ty.contains(" max=") && ty.contains(" start="), "{ty}");
+        let items = trb::packaging::items(row);
+        assert!(head.contains(&format!("(values: {items})")), "{head}");
+    }
+    assert!(enumerations >= 10, "{enumerations} enumeration parameters");
+    let (head, ty) = scalar_variable(&xml, "fidelity");
+    assert!(head.contains("(values: 0 quasiStatic, 1 dynamic, 2 quasiDynamic)"), "{head}");
+    assert_eq!(ty.trim(), r#"<Integer min="0" max="2" start="0"/>"#);
+
+    // One source of truth: the XML is the generator's with that switch, its GUID what the
+    // binary expects from the packaged options.
+    let packaging = trb::packaging::Packaging {
+        enumerations_as_integers: true,
+        start: Vec::new(),
+    };
+    let (want_xml, guid) = model_description::generate_with(&bearing, &packaging).unwrap();
+    assert_eq!(xml, want_xml);
+    assert_ne!(guid, model_description::guid(&bearing));
+    assert!(stdout(&o).contains(&guid));
+}
