@@ -876,3 +876,78 @@ fn fmu_enumerations_as_integers_declares_every_enumeration_an_integer() {
     assert_ne!(guid, model_description::guid(&bearing));
     assert!(stdout(&o).contains(&guid));
 }
+
+#[test]
+fn fmu_set_packages_start_values_checked_against_the_variable() {
+    let s = Scratch::new("fmuset");
+    let lib = fake_library(&s);
+    let out = s.path("set.fmu");
+    let o = trb(&[
+        "fmu",
+        "--library",
+        p(&lib),
+        "--out",
+        p(&out),
+        "--set",
+        "fidelity=2",
+        "--set",
+        "supply=grease",
+        "--set",
+        "mu=0.25",
+        "--set",
+        "skewModel=false",
+        "--set",
+        "roller[3].dD=-2e-6",
+        "--set",
+        "supply=oilAir",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let entries = read_zip(&out);
+    let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    for (name, start) in [
+        ("fidelity", "2"),
+        ("supply", "3"),
+        ("mu", "0.25"),
+        ("skewModel", "false"),
+        ("roller[3].dD", "-2e-6"),
+    ] {
+        let (_, ty) = scalar_variable(&xml, name);
+        assert!(ty.contains(&format!(r#" start="{start}""#)), "{name}: {ty}");
+    }
+    assert!(xml.contains(r#"<Enumeration declaredType="Fidelity" min="0" max="2" start="2"/>"#));
+    let json: serde_json::Value = serde_json::from_slice(&entries["resources/packaging.json"]).unwrap();
+    assert_eq!(
+        json,
+        serde_json::json!({"start": {"fidelity": 2, "mu": 0.25, "roller[3].dD": -2e-6, "skewModel": false, "supply": 3}})
+    );
+    // The documentation's variable table shows the packaged start.
+    let html = String::from_utf8(entries["documentation/index.html"].clone()).unwrap();
+    assert!(html.contains("roller[3].dD"));
+
+    for (set, needle) in [
+        ("nosuch=1", "unknown variable `nosuch`"),
+        ("speed=100", "`speed` is an input, not a parameter"),
+        ("powerLoss=1", "`powerLoss` is an output, not a parameter"),
+        ("mu=high", "`mu`: expected a number"),
+        ("mu=2.5", "`mu` = 2.5 is out of range: it must be [0, 2]"),
+        (
+            "fidelity=3",
+            "`fidelity` = 3 is out of range: it must be [0, 2] (0 quasiStatic, 1 dynamic, 2 quasiDynamic)",
+        ),
+        (
+            "fidelity=veryFast",
+            "`fidelity`: expected an item of Fidelity: 0 quasiStatic, 1 dynamic, 2 quasiDynamic",
+        ),
+        ("slices=1", "`slices` = 1 is out of range"),
+        ("skewModel=yes", "`skewModel`: expected true or false"),
+        ("roller[18].dD=0", "unknown variable `roller[18].dD`"),
+        ("fidelity", "not NAME=VALUE"),
+    ] {
+        let bad = s.path("bad.fmu");
+        let o = trb(&["fmu", "--library", p(&lib), "--out", p(&bad), "--set", set]);
+        assert_eq!(o.status.code(), Some(2), "--set {set}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "--set {set}: `{}` misses {needle}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+        assert!(!bad.exists(), "--set {set}: an FMU was written");
+    }
+}

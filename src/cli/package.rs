@@ -60,6 +60,20 @@ pub struct FmuArgs {
     /// description, for importers that cannot set Enumerations (Ecos). The binary is the same.
     #[arg(long)]
     pub enumerations_as_integers: bool,
+    /// Start value of a parameter in this FMU (repeatable; the last one of a name counts): a
+    /// number in SI units, an integer, true/false, or an enumeration item by number or name,
+    /// e.g. --set fidelity=2 --set supply=grease. Instances start from it unless the importer
+    /// sets another.
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = name_value)]
+    pub set: Vec<(String, String)>,
+}
+
+/// `NAME=VALUE` of `--set`.
+fn name_value(arg: &str) -> Result<(String, String), String> {
+    match arg.split_once('=') {
+        Some((name, value)) if !name.trim().is_empty() => Ok((name.trim().to_string(), value.to_string())),
+        _ => Err(format!("`{arg}` is not NAME=VALUE (for example fidelity=2)")),
+    }
 }
 
 /// How to declare the FMU beyond its bearing: the options `--enumerations-as-integers` and
@@ -188,7 +202,7 @@ impl Packaged {
 pub fn run(args: FmuArgs) -> Result<(), CliError> {
     let declaration = Declaration {
         enumerations_as_integers: args.enumerations_as_integers,
-        set: Vec::new(),
+        set: args.set.clone(),
     };
     let packaged = if args.portable {
         // A bad bearing or start value is reported before minutes of building.
