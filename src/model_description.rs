@@ -14,12 +14,24 @@ use crate::variables::{self, Causality, VarType, Variability};
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
 
-/// The FMU's model identifier (binary name and function prefix-free exports).
+/// The model identifier of the default bearing's FMU (binary name; the exports carry no
+/// prefix). Other bearings' FMUs get their own, see [`model_identifier`].
 pub const MODEL_IDENTIFIER: &str = "TaperedRollerBearing";
 
-/// The model identifier (and binary name) of `bearing`'s FMU.
-pub fn model_identifier(_bearing: &Bearing) -> String {
-    MODEL_IDENTIFIER.to_string()
+/// The model identifier (and binary name) of `bearing`'s FMU: [`MODEL_IDENTIFIER`] for the
+/// default preset, otherwise `TRB_` and the bearing's name with every character that may not
+/// stand in a C identifier replaced by `_` (`32008` -> `TRB_32008`, `CRB-TRILOBE` ->
+/// `TRB_CRB_TRILOBE`), so that FMUs of different bearings can be loaded side by side.
+pub fn model_identifier(bearing: &Bearing) -> String {
+    if *bearing == Bearing::default_preset() {
+        return MODEL_IDENTIFIER.to_string();
+    }
+    let name: String = bearing
+        .name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    format!("TRB_{name}")
 }
 
 /// Log categories the FMU declares and passes to the logger.
@@ -380,6 +392,29 @@ mod tests {
         }
         assert!(xml.contains(r#"name="roller[17].Nfs""#));
         assert!(!xml.contains(r#"name="roller[18].Nfs""#));
+    }
+
+    #[test]
+    fn model_identifiers_are_c_identifiers_of_their_own() {
+        let default = Bearing::default_preset();
+        assert_eq!(model_identifier(&default), MODEL_IDENTIFIER);
+        let mut ids: Vec<String> = crate::bearing::PRESETS
+            .iter()
+            .map(|(name, _)| model_identifier(&Bearing::preset(name).unwrap()))
+            .collect();
+        assert_eq!(ids[1..], ["TRB_32018X", "TRB_32008", "TRB_CRB_TRILOBE", "TRB_TRB130x230_W25"]);
+        // the default preset changed keeps its name but not its identifier
+        let mut changed = default.clone();
+        changed.roller_count -= 1;
+        ids.push(model_identifier(&changed));
+        assert_eq!(ids.last().unwrap(), "TRB_TRB130x230");
+        let unique: std::collections::BTreeSet<&String> = ids.iter().collect();
+        assert_eq!(unique.len(), ids.len());
+        for id in &ids {
+            assert!(id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') && !id.starts_with(|c: char| c.is_ascii_digit()));
+        }
+        let (xml, _) = generate(&Bearing::preset("32008").unwrap());
+        assert!(xml.contains(r#"modelIdentifier="TRB_32008""#));
     }
 
     #[test]

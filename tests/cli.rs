@@ -278,8 +278,14 @@ fn fmu_of_preset_32008_has_23_rollers() {
     let lib = fake_library(&s);
     let o = trb(&["fmu", "--bearing", "32008", "--library", p(&lib), "--out", p(&s.0)]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let entries = read_zip(&s.path("TaperedRollerBearing.fmu"));
+    // ... to put the FMU in under its own model identifier.
+    let fmu = s.path("TRB_32008.fmu");
+    let entries = read_zip(&fmu);
     let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    assert!(xml.contains(r#"modelName="TRB_32008""#) && xml.contains(r#"modelIdentifier="TRB_32008""#));
+    assert!(entries.contains_key("binaries/linux64/TRB_32008.so"));
+    assert!(!entries.contains_key("binaries/linux64/TaperedRollerBearing.so"));
+    assert!(stdout(&o).contains(p(&fmu)) && stdout(&o).contains("modelIdentifier TRB_32008"));
     assert!(xml.contains(r#"name="roller[23].tilt""#));
     assert!(!xml.contains(r#"name="roller[24].tilt""#));
     let bearing = Bearing::preset("32008").unwrap();
@@ -950,4 +956,29 @@ fn fmu_set_packages_start_values_checked_against_the_variable() {
         assert!(!stderr(&o).contains("panicked"));
         assert!(!bad.exists(), "--set {set}: an FMU was written");
     }
+}
+
+#[test]
+fn fmu_of_another_bearing_goes_by_default_to_its_own_file() {
+    let s = Scratch::new("fmuownfile");
+    let lib = fake_library(&s);
+    let name = format!("CLI test {}", std::process::id());
+    let text = PRESETS[2].1.replace("\"name\": \"32008\"", &format!("\"name\": \"{name}\""));
+    let file = s.write("bearing.json", &text);
+    let o = trb(&["fmu", "--bearing", p(&file), "--library", p(&lib)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let id = format!("TRB_CLI_test_{}", std::process::id());
+    assert_eq!(model_description::model_identifier(&Bearing::from_json(&text).unwrap()), id);
+    // <target dir>/fmu/<modelIdentifier>.fmu, named in the summary
+    let target = Path::new(EXE).parent().unwrap().parent().unwrap();
+    let fmu = target.join("fmu").join(format!("{id}.fmu"));
+    let written = fmu.is_file();
+    let _ = std::fs::remove_file(&fmu);
+    let _ = std::fs::remove_file(fmu.with_extension("linux64.debug"));
+    assert!(written, "{} not written; stdout {}", fmu.display(), stdout(&o));
+    assert!(
+        stdout(&o).starts_with(&format!("{}: modelIdentifier {id}, bearing {name}", fmu.display())),
+        "{}",
+        stdout(&o)
+    );
 }

@@ -1,6 +1,7 @@
 """FMUs packaged with options of `trb fmu`: `--enumerations-as-integers` (for importers
 that cannot set Enumerations, such as Ecos) and `--set NAME=VALUE` (start values), checked in
-fmpy against the plain FMU."""
+fmpy against the plain FMU; FMUs of different bearings, each with its own model identifier,
+side by side in one process."""
 
 import os
 import re
@@ -89,3 +90,22 @@ def test_bad_set_is_refused_naming_the_variable(tmp_path):
     assert proc.returncode == 2, proc.stderr
     assert "`supply`: expected an item of Supply: 0 flooded, 1 oilBath, 2 grease, 3 oilAir" in proc.stderr
     assert not (tmp_path / "x.fmu").exists()
+
+
+def test_two_bearings_load_side_by_side_in_one_process(models, slaves):
+    """The default bearing's FMU and 32008's (modelIdentifier TRB_32008) instantiated in one
+    process step together, each as it does alone."""
+    pair = [models("TRB130x230"), models("32008")]
+    assert [m.md.coSimulation.modelIdentifier for m in pair] == ["TaperedRollerBearing", "TRB_32008"]
+    alone = [simulate(m.path, {}) for m in pair]
+    fmus = [slaves.new(m) for m in pair]
+    for fmu in fmus:
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+    for k in range(4):
+        for fmu in fmus:
+            fmu.doStep(currentCommunicationPoint=k * 1e-3, communicationStepSize=1e-3)
+    torques = [fmu.getReal([m.vr("frictionTorque")])[0] for fmu, m in zip(fmus, pair)]
+    assert torques == [a["frictionTorque"][-1] for a in alone]
+    assert torques[0] != torques[1]
