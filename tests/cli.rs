@@ -982,3 +982,64 @@ fn fmu_of_another_bearing_goes_by_default_to_its_own_file() {
         stdout(&o)
     );
 }
+
+/// The comma-separated names in `text` between `before` and the next `)`, whitespace (and
+/// the help's line wrapping) collapsed.
+fn listed_after(text: &str, before: &str) -> Vec<String> {
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let rest = flat.split(before).nth(1).unwrap_or_else(|| panic!("`{before}` not in `{flat}`"));
+    rest.split(')').next().unwrap().split(", ").map(str::to_string).collect()
+}
+
+#[test]
+fn presets_agree_in_the_table_the_help_the_error_and_the_readme() {
+    let table: Vec<String> = PRESETS.iter().map(|(n, _)| n.to_string()).collect();
+    assert!(table.contains(&"TRB130x230-W25".to_string()));
+    let help = trb(&["fmu", "--help"]);
+    assert!(help.status.success());
+    assert_eq!(listed_after(&stdout(&help), "a preset ("), table, "fmu --help");
+    let show = trb(&["bearing", "show", "--help"]);
+    let line = stdout(&show)
+        .lines()
+        .find(|l| l.contains("The preset's name: "))
+        .unwrap_or_default()
+        .to_string();
+    assert_eq!(
+        listed_after(&format!("{line})"), "The preset's name: "),
+        table,
+        "bearing show --help"
+    );
+    let unknown = trb(&["fmu", "--bearing", "NO-SUCH-PRESET"]);
+    assert_eq!(listed_after(&stderr(&unknown), "neither a preset ("), table, "the error message");
+    // README, "Presets and your bearing": the first column of its table, in any order.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let section = readme
+        .split("## Presets and your bearing")
+        .nth(1)
+        .expect("README has the presets section");
+    let mut listed: Vec<String> = section
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .filter_map(|l| l.strip_prefix("| `"))
+        .map(|l| l.split('`').next().unwrap().to_string())
+        .collect();
+    let mut want = table.clone();
+    listed.sort();
+    want.sort();
+    assert_eq!(listed, want, "README's preset table");
+}
+
+#[test]
+fn demo_says_which_files_and_plot_it_writes() {
+    let s = Scratch::new("demo");
+    let csv = s.path("demo.csv");
+    let o = trb(&["demo", "--skip-dynamic", "--csv", p(&csv)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let first = stdout(&o).lines().next().unwrap_or_default().to_string();
+    assert!(
+        first.starts_with(&format!("Writes {}", p(&csv))) && first.contains("no plot"),
+        "{first}"
+    );
+    assert!(csv.is_file());
+}

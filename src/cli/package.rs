@@ -29,7 +29,7 @@ use super::{documentation, icon, paths, portable, strip, CliError};
 use clap::Args;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use trb::bearing::{Bearing, DEFAULT_PRESET, PRESETS};
+use trb::bearing::{preset_names, Bearing, DEFAULT_PRESET, PRESETS};
 use trb::model_description::{self, MODEL_IDENTIFIER};
 use trb::packaging::{self, Packaging};
 use zip::write::SimpleFileOptions;
@@ -37,9 +37,8 @@ use zip::{CompressionMethod, DateTime, ZipWriter};
 
 #[derive(Debug, Clone, Args)]
 pub struct FmuArgs {
-    /// Bearing to package: a preset (TRB130x230, 32018X, 32008, CRB-TRILOBE) or a bearing
-    /// JSON file.
-    #[arg(long, value_name = "NAME|FILE.json", default_value = DEFAULT_PRESET)]
+    // Bearing to package: its help names the presets of the table.
+    #[arg(long, value_name = "NAME|FILE.json", default_value = DEFAULT_PRESET, help = bearing_help())]
     pub bearing: String,
     /// Where to write the FMU (a file, or an existing directory to put <modelIdentifier>.fmu
     /// in). Default: <cargo target dir>/fmu/<modelIdentifier>.fmu, TaperedRollerBearing.fmu for
@@ -66,6 +65,11 @@ pub struct FmuArgs {
     /// sets another.
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = name_value)]
     pub set: Vec<(String, String)>,
+}
+
+/// The help of `--bearing`, naming every preset of the table.
+pub fn bearing_help() -> String {
+    format!("Bearing to package: a preset ({}) or a bearing JSON file", preset_names())
 }
 
 /// `NAME=VALUE` of `--set`.
@@ -148,10 +152,9 @@ pub fn load_bearing(arg: &str) -> Result<LoadedBearing, CliError> {
     }
     let path = Path::new(arg);
     if !path.exists() {
-        let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
         return Err(CliError::invalid(format!(
             "bearing `{arg}` is neither a preset ({}) nor an existing file",
-            names.join(", ")
+            preset_names()
         )));
     }
     let json = std::fs::read_to_string(path).map_err(|e| CliError::invalid(format!("cannot read bearing file {}: {e}", path.display())))?;
