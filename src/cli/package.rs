@@ -3,8 +3,8 @@
 //! Archive layout (no directory entries, fixed timestamps so equal inputs give equal bytes):
 //! - `modelDescription.xml`: `model_description::generate_with(&bearing, &packaging)`
 //! - `binaries/linux64/<modelIdentifier>.so` (`model_description::model_identifier`:
-//!   `TaperedRollerBearing` for the default bearing, `TRB_<name>` for the others; below the
-//!   default's): the crate's cdylib (`libtrb.so`). The `[lib]`
+//!   `TaperedRollerBearing` for the default bearing, `TRB_<name>` for the others; the names
+//!   below are the default bearing's): the crate's cdylib (`libtrb.so`). The `[lib]`
 //!   has crate types `cdylib` and `rlib`, and building the binary compiles the library with
 //!   both, so `cargo run --release -- fmu` always has a current cdylib; see
 //!   `paths::default_library` for where cargo leaves it.
@@ -81,7 +81,7 @@ fn name_value(arg: &str) -> Result<(String, String), String> {
 }
 
 /// How to declare the FMU beyond its bearing: the options `--enumerations-as-integers` and
-/// `--set`, resolved against the bearing by [`resolve`].
+/// `--set`, resolved against the bearing by [`Declaration::resolve`].
 #[derive(Debug, Clone, Default)]
 pub struct Declaration {
     pub enumerations_as_integers: bool,
