@@ -25,6 +25,12 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("TRB130x230-W25", include_str!("../presets/TRB130x230-W25.json")),
 ];
 
+/// The presets' names in table order, comma-separated, as help texts and error messages list
+/// them.
+pub fn preset_names() -> String {
+    PRESETS.iter().map(|(name, _)| *name).collect::<Vec<_>>().join(", ")
+}
+
 /// The JSON Schema (draft 2020-12) of a bearing file, derived from the same structures that
 /// read it; shipped as `presets/bearing.schema.json` (a test keeps the two equal).
 pub fn bearing_file_schema() -> String {
@@ -442,10 +448,7 @@ impl Bearing {
             .iter()
             .find(|(n, _)| n.eq_ignore_ascii_case(name))
             .map(|(_, t)| *t)
-            .ok_or_else(|| {
-                let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
-                err("", format!("unknown preset `{name}`; presets are {}", names.join(", ")))
-            })?;
+            .ok_or_else(|| err("", format!("unknown preset `{name}`; presets are {}", preset_names())))?;
         Bearing::from_json(text)
     }
 
