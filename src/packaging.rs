@@ -22,13 +22,7 @@ use std::collections::BTreeMap;
 /// The file's name in the FMU's `resources/`.
 pub const RESOURCE: &str = "packaging.json";
 
-/// A start value of one of the FMI base types.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Value {
-    Real(f64),
-    Integer(i32),
-    Boolean(bool),
-}
+pub use crate::variables::Value;
 
 /// A parameter's start value: its name, value reference and value.
 #[derive(Debug, Clone, PartialEq)]
