@@ -40,8 +40,8 @@ pub struct FmuArgs {
     // Bearing to package: its help names the presets of the table.
     #[arg(long, value_name = "NAME|FILE.json", default_value = DEFAULT_PRESET, help = bearing_help())]
     pub bearing: String,
-    /// Where to write the FMU (a file, or an existing directory to put <modelIdentifier>.fmu
-    /// in). Default: <cargo target dir>/fmu/<modelIdentifier>.fmu, TaperedRollerBearing.fmu for
+    /// Where to write the FMU (a file, or a directory to put <modelIdentifier>.fmu in: one that
+    /// exists, or a path ending in `/`, which is created). Default: <cargo target dir>/fmu/<modelIdentifier>.fmu, TaperedRollerBearing.fmu for
     /// the default bearing, TRB_<bearing name>.fmu for another.
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
@@ -263,8 +263,10 @@ pub fn package_binaries(
     let packaging = declaration.resolve(bearing)?;
     let id = model_description::model_identifier(bearing);
 
+    // a directory: one that exists, or a path written with a trailing separator (created)
+    let names_a_directory = |p: &Path| p.is_dir() || p.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR);
     let out = match out {
-        Some(p) if p.is_dir() => p.join(format!("{id}.fmu")),
+        Some(p) if names_a_directory(p) => p.join(format!("{id}.fmu")),
         Some(p) => p.to_path_buf(),
         None => paths::default_fmu_path(&id)?,
     };
