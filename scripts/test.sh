@@ -13,7 +13,7 @@
 #    under valgrind (scripts/leaks.sh) and a bounded fuzzing run (scripts/fuzz.sh); then the
 #    portable FMU (cargo run --release -- fmu --portable, tools by scripts/cross-setup.sh) and
 #    its tests (tests/portable: glibc 2.17, the win64 DLL under wine against linux64);
-# 4. pytest tests/python.
+# 4. pytest tests/python (Ecos's runtime libtbb12 installed first, as root with apt-get).
 # Needs only Rust (cargo), Python 3.11 or newer with pip (and venv), and a C toolchain for
 # cargo; the portable FMU's tools are installed by scripts/cross-setup.sh (Debian packages
 # only as root).
@@ -164,6 +164,20 @@ if [ -x "$ROOT/../shared/tools/fmuCheck.linux64" ] || [ -n "${TRB_FMUCHECK:-}" ]
     echo "FMU Compliance Checker: ${TRB_FMUCHECK:-$ROOT/../shared/tools/fmuCheck.linux64} (tests/python/test_package.py)"
 else
     echo "NOTE: no FMU Compliance Checker at $ROOT/../shared/tools/fmuCheck.linux64 (set TRB_FMUCHECK): its checks are skipped"
+fi
+# Ecos (ecospy, tests/python/test_ecos.py) loads Debian's libtbb12: installed here as root with
+# apt-get; elsewhere its tests are skipped with that reason.
+if ldconfig -p 2>/dev/null | grep -q 'libtbb\.so\.12'; then
+    echo "Ecos: libtbb12 is installed (tests/python/test_ecos.py)"
+elif [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    if apt-get install -y -qq --no-install-recommends libtbb12 >/dev/null 2>&1 ||
+        { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq --no-install-recommends libtbb12 >/dev/null 2>&1; }; then
+        echo "Ecos: installed libtbb12 with apt-get (tests/python/test_ecos.py)"
+    else
+        echo "NOTE: apt-get could not install libtbb12: the Ecos tests (tests/python/test_ecos.py) are skipped"
+    fi
+else
+    echo "NOTE: Debian's libtbb12 is missing and cannot be installed here (not root or no apt-get): the Ecos tests (tests/python/test_ecos.py) are skipped"
 fi
 begin "pytest tests/python"
 "$VENV/bin/python" -m pytest tests/python -q -p no:cacheprovider "$@" || fail "pytest tests/python"

@@ -28,6 +28,7 @@ pub mod housing;
 pub mod journal_film;
 pub mod model;
 pub mod model_description;
+pub mod packaging;
 pub mod quasi_dynamic;
 pub mod quasi_static;
 #[cfg(target_arch = "x86_64")]

@@ -8,13 +8,31 @@
 //! description changes.
 
 use crate::bearing::Bearing;
+use crate::packaging::{self, Packaging};
 use crate::simulation::Simulation;
 use crate::variables::{self, Causality, VarType, Variability};
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
 
-/// The FMU's model identifier (binary name and function prefix-free exports).
+/// The model identifier of the default bearing's FMU (binary name; the exports carry no
+/// prefix). Other bearings' FMUs get their own, see [`model_identifier`].
 pub const MODEL_IDENTIFIER: &str = "TaperedRollerBearing";
+
+/// The model identifier (and binary name) of `bearing`'s FMU: [`MODEL_IDENTIFIER`] for the
+/// default preset, otherwise `TRB_` and the bearing's name with every character that may not
+/// stand in a C identifier replaced by `_` (`32008` -> `TRB_32008`, `CRB-TRILOBE` ->
+/// `TRB_CRB_TRILOBE`), so that FMUs of different bearings can be loaded side by side.
+pub fn model_identifier(bearing: &Bearing) -> String {
+    if *bearing == Bearing::default_preset() {
+        return MODEL_IDENTIFIER.to_string();
+    }
+    let name: String = bearing
+        .name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    format!("TRB_{name}")
+}
 
 /// Log categories the FMU declares and passes to the logger.
 pub const LOG_CATEGORIES: &[(&str, &str)] = &[
@@ -81,14 +99,23 @@ fn real(v: f64) -> String {
     format!("{v:?}")
 }
 
-/// Generate the model description for `bearing`. Returns (xml, guid).
+/// Generate the model description for `bearing` as a plain `trb fmu` packages it. Returns
+/// (xml, guid).
 pub fn generate(bearing: &Bearing) -> (String, String) {
-    let body = render(bearing, "@GUID@");
+    generate_with(bearing, &Packaging::default()).expect("no start values to refuse")
+}
+
+/// Generate the model description for `bearing` packaged with `packaging` (start values,
+/// Enumerations declared as Integers). Returns (xml, guid), or why a start value is refused.
+pub fn generate_with(bearing: &Bearing, packaging: &Packaging) -> Result<(String, String), String> {
+    let mut sim = Simulation::new(bearing.clone());
+    packaging.apply(&mut sim)?;
+    let body = render(bearing, packaging.enumerations_as_integers, &mut sim, "@GUID@");
     let digest = Sha256::digest(body.as_bytes());
     let h: Vec<String> = digest[..16].iter().map(|b| format!("{b:02x}")).collect();
     let h = h.concat();
     let guid = format!("{{{}-{}-{}-{}-{}}}", &h[0..8], &h[8..12], &h[12..16], &h[16..20], &h[20..32]);
-    (body.replace("@GUID@", &guid), guid)
+    Ok((body.replace("@GUID@", &guid), guid))
 }
 
 /// Just the GUID of `bearing`'s model description.
@@ -96,14 +123,20 @@ pub fn guid(bearing: &Bearing) -> String {
     generate(bearing).1
 }
 
-fn render(bearing: &Bearing, guid: &str) -> String {
+/// Just the GUID of `bearing`'s model description packaged with `packaging`.
+pub fn guid_with(bearing: &Bearing, packaging: &Packaging) -> Result<String, String> {
+    generate_with(bearing, packaging).map(|(_, guid)| guid)
+}
+
+/// The model description of `bearing` with the start values of `sim` (a fresh element).
+fn render(bearing: &Bearing, enumerations_as_integers: bool, sim: &mut Simulation, guid: &str) -> String {
     let z = bearing.roller_count;
-    let mut sim = Simulation::new(bearing.clone());
+    let id = model_identifier(bearing);
     let mut x = String::new();
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         x,
-        r#"<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{guid}" description="{}" author="tapered-roller-bearing contributors" version="{}" copyright="{COPYRIGHT}" license="{LICENSE}" generationTool="tapered-roller-bearing {}" generationDateAndTime="{GENERATION_DATE}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+        r#"<fmiModelDescription fmiVersion="2.0" modelName="{id}" guid="{guid}" description="{}" author="tapered-roller-bearing contributors" version="{}" copyright="{COPYRIGHT}" license="{LICENSE}" generationTool="tapered-roller-bearing {}" generationDateAndTime="{GENERATION_DATE}" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
         xml_escape(&format!(
             "Tapered roller bearing element (quasi-static and dynamic), bearing {}: {}",
             bearing.name, bearing.description
@@ -113,7 +146,7 @@ fn render(bearing: &Bearing, guid: &str) -> String {
     );
     let _ = writeln!(
         x,
-        r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="true" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#
+        r#"  <CoSimulation modelIdentifier="{id}" needsExecutionTool="false" canHandleVariableCommunicationStepSize="true" canInterpolateInputs="true" maxOutputDerivativeOrder="0" canRunAsynchronuously="false" canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" providesDirectionalDerivative="false"/>"#
     );
     let _ = writeln!(x, "  <UnitDefinitions>");
     for (name, [kg, m, s, rad, k], factor, displays) in UNITS {
@@ -143,7 +176,9 @@ fn render(bearing: &Bearing, guid: &str) -> String {
         }
     }
     let _ = writeln!(x, "  </UnitDefinitions>");
-    write_type_definitions(&mut x);
+    if !enumerations_as_integers {
+        write_type_definitions(&mut x);
+    }
     let _ = writeln!(x, "  <LogCategories>");
     for (name, desc) in LOG_CATEGORIES {
         let _ = writeln!(x, r#"    <Category name="{name}" description="{}"/>"#, xml_escape(desc));
@@ -171,76 +206,82 @@ fn render(bearing: &Bearing, guid: &str) -> String {
             Variability::Discrete => "discrete",
             Variability::Continuous => "continuous",
         };
+        let as_integer = enumerations_as_integers && row.enumeration.is_some();
+        let mut description = row.description_for(j);
+        if as_integer {
+            let _ = write!(description, " (values: {})", packaging::items(row));
+        }
         let _ = writeln!(
             x,
             r#"    <ScalarVariable name="{}" valueReference="{vr}" description="{}" causality="{causality}" variability="{variability}">"#,
             xml_escape(&name),
-            xml_escape(&row.description_for(j))
+            xml_escape(&description)
         );
-        let has_start = row.causality != Causality::Output;
-        let mut attrs = String::new();
-        match row.ty {
-            VarType::Real => {
-                if let Some(u) = row.unit {
-                    let _ = write!(attrs, r#" unit="{}""#, xml_escape(u));
-                }
-                if let Some(d) = row.display_unit {
-                    let _ = write!(attrs, r#" displayUnit="{d}""#);
-                }
-                if let Some(m) = row.min {
-                    let _ = write!(attrs, r#" min="{}""#, real(m));
-                }
-                if let Some(m) = row.max {
-                    let _ = write!(attrs, r#" max="{}""#, real(m));
-                }
-                if has_start {
-                    let v = sim.get_real(vr).expect("start value of a real variable");
-                    let _ = write!(attrs, r#" start="{}""#, real(v));
-                }
-                let _ = writeln!(x, "      <Real{attrs}/>");
-            }
-            VarType::Integer if row.enumeration.is_some() => {
-                let e = row.enumeration.expect("checked");
-                let _ = write!(attrs, r#" declaredType="{}""#, e.name);
-                if let Some(m) = row.min {
-                    let _ = write!(attrs, r#" min="{}""#, m as i64);
-                }
-                if let Some(m) = row.max {
-                    let _ = write!(attrs, r#" max="{}""#, m as i64);
-                }
-                if has_start {
-                    let v = sim.get_integer(vr).expect("start value of an enumeration");
-                    let _ = write!(attrs, r#" start="{v}""#);
-                }
-                let _ = writeln!(x, "      <Enumeration{attrs}/>");
-            }
-            VarType::Integer => {
-                if let Some(m) = row.min {
-                    let _ = write!(attrs, r#" min="{}""#, m as i64);
-                }
-                if let Some(m) = row.max {
-                    let _ = write!(attrs, r#" max="{}""#, m as i64);
-                }
-                if has_start {
-                    let v = sim.get_integer(vr).expect("start value of an integer variable");
-                    let _ = write!(attrs, r#" start="{v}""#);
-                }
-                let _ = writeln!(x, "      <Integer{attrs}/>");
-            }
-            VarType::Boolean => {
-                if has_start {
-                    let v = sim.get_boolean(vr).expect("start value of a boolean variable");
-                    let _ = write!(attrs, r#" start="{v}""#);
-                }
-                let _ = writeln!(x, "      <Boolean{attrs}/>");
-            }
-        }
+        let start = row.causality != Causality::Output;
+        let _ = writeln!(x, "      {}", type_element(row, vr, start, as_integer, sim));
         let _ = writeln!(x, "    </ScalarVariable>");
     }
     let _ = writeln!(x, "  </ModelVariables>");
     write_model_structure(&mut x, &expanded);
     let _ = writeln!(x, "</fmiModelDescription>");
     x
+}
+
+/// The type element of variable `vr` (`<Real unit=... start=.../>`), its start value read from
+/// `sim` when `start`; an enumeration as `<Integer>` when `as_integer`.
+fn type_element(row: &variables::Variable, vr: u32, start: bool, as_integer: bool, sim: &mut Simulation) -> String {
+    let mut attrs = String::new();
+    let integer_range = |attrs: &mut String| {
+        if let Some(m) = row.min {
+            let _ = write!(attrs, r#" min="{}""#, m as i64);
+        }
+        if let Some(m) = row.max {
+            let _ = write!(attrs, r#" max="{}""#, m as i64);
+        }
+    };
+    match row.ty {
+        VarType::Real => {
+            if let Some(u) = row.unit {
+                let _ = write!(attrs, r#" unit="{}""#, xml_escape(u));
+            }
+            if let Some(d) = row.display_unit {
+                let _ = write!(attrs, r#" displayUnit="{d}""#);
+            }
+            if let Some(m) = row.min {
+                let _ = write!(attrs, r#" min="{}""#, real(m));
+            }
+            if let Some(m) = row.max {
+                let _ = write!(attrs, r#" max="{}""#, real(m));
+            }
+            if start {
+                let v = sim.get_real(vr).expect("start value of a real variable");
+                let _ = write!(attrs, r#" start="{}""#, real(v));
+            }
+            format!("<Real{attrs}/>")
+        }
+        VarType::Integer => {
+            let tag = match row.enumeration {
+                Some(e) if !as_integer => {
+                    let _ = write!(attrs, r#" declaredType="{}""#, e.name);
+                    "Enumeration"
+                }
+                _ => "Integer",
+            };
+            integer_range(&mut attrs);
+            if start {
+                let v = sim.get_integer(vr).expect("start value of an integer variable");
+                let _ = write!(attrs, r#" start="{v}""#);
+            }
+            format!("<{tag}{attrs}/>")
+        }
+        VarType::Boolean => {
+            if start {
+                let v = sim.get_boolean(vr).expect("start value of a boolean variable");
+                let _ = write!(attrs, r#" start="{v}""#);
+            }
+            format!("<Boolean{attrs}/>")
+        }
+    }
 }
 
 /// `<TypeDefinitions>`: one Enumeration type per mode (parameters may share one).
@@ -351,6 +392,29 @@ mod tests {
         }
         assert!(xml.contains(r#"name="roller[17].Nfs""#));
         assert!(!xml.contains(r#"name="roller[18].Nfs""#));
+    }
+
+    #[test]
+    fn model_identifiers_are_c_identifiers_of_their_own() {
+        let default = Bearing::default_preset();
+        assert_eq!(model_identifier(&default), MODEL_IDENTIFIER);
+        let mut ids: Vec<String> = crate::bearing::PRESETS
+            .iter()
+            .map(|(name, _)| model_identifier(&Bearing::preset(name).unwrap()))
+            .collect();
+        assert_eq!(ids[1..], ["TRB_32018X", "TRB_32008", "TRB_CRB_TRILOBE", "TRB_TRB130x230_W25"]);
+        // the default preset changed keeps its name but not its identifier
+        let mut changed = default.clone();
+        changed.roller_count -= 1;
+        ids.push(model_identifier(&changed));
+        assert_eq!(ids.last().unwrap(), "TRB_TRB130x230");
+        let unique: std::collections::BTreeSet<&String> = ids.iter().collect();
+        assert_eq!(unique.len(), ids.len());
+        for id in &ids {
+            assert!(id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') && !id.starts_with(|c: char| c.is_ascii_digit()));
+        }
+        let (xml, _) = generate(&Bearing::preset("32008").unwrap());
+        assert!(xml.contains(r#"modelIdentifier="TRB_32008""#));
     }
 
     #[test]

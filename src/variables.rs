@@ -2,6 +2,15 @@
 //! `modelDescription/variables.json`, the single source of truth that
 //! `model_description.rs` also turns into `modelDescription.xml`.
 
+/// A value of one of the FMI base types a parameter takes (a scenario's setting, a stress
+/// case's, a packaged start value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+}
+
 /// FMI base type of a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VarType {

@@ -278,8 +278,14 @@ fn fmu_of_preset_32008_has_23_rollers() {
     let lib = fake_library(&s);
     let o = trb(&["fmu", "--bearing", "32008", "--library", p(&lib), "--out", p(&s.0)]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let entries = read_zip(&s.path("TaperedRollerBearing.fmu"));
+    // ... to put the FMU in under its own model identifier.
+    let fmu = s.path("TRB_32008.fmu");
+    let entries = read_zip(&fmu);
     let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    assert!(xml.contains(r#"modelName="TRB_32008""#) && xml.contains(r#"modelIdentifier="TRB_32008""#));
+    assert!(entries.contains_key("binaries/linux64/TRB_32008.so"));
+    assert!(!entries.contains_key("binaries/linux64/TaperedRollerBearing.so"));
+    assert!(stdout(&o).contains(p(&fmu)) && stdout(&o).contains("modelIdentifier TRB_32008"));
     assert!(xml.contains(r#"name="roller[23].tilt""#));
     assert!(!xml.contains(r#"name="roller[24].tilt""#));
     let bearing = Bearing::preset("32008").unwrap();
@@ -814,4 +820,229 @@ fn bearing_estimate_builds_a_bearing_from_catalogue_data() {
             assert!(stderr(&o).contains(&format!("{field}:")), "{bad:?}: {}", stderr(&o));
         }
     }
+}
+
+/// The `<ScalarVariable ...>` line of `name` and the type element on the line after it.
+fn scalar_variable<'a>(xml: &'a str, name: &str) -> (&'a str, &'a str) {
+    let needle = format!(r#"<ScalarVariable name="{name}" "#);
+    let mut lines = xml.lines().skip_while(|l| !l.contains(&needle));
+    let head = lines.next().unwrap_or_else(|| panic!("no variable {name}"));
+    (head, lines.next().unwrap())
+}
+
+#[test]
+fn fmu_enumerations_as_integers_declares_every_enumeration_an_integer() {
+    let s = Scratch::new("fmuints");
+    let lib = fake_library(&s);
+    let (plain, ints) = (s.path("plain.fmu"), s.path("ints.fmu"));
+    assert!(trb(&["fmu", "--library", p(&lib), "--out", p(&plain)]).status.success());
+    let o = trb(&["fmu", "--enumerations-as-integers", "--library", p(&lib), "--out", p(&ints)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (plain, ints) = (read_zip(&plain), read_zip(&ints));
+    let xml_of = |e: &std::collections::BTreeMap<String, Vec<u8>>| String::from_utf8(e["modelDescription.xml"].clone()).unwrap();
+    let (plain_xml, xml) = (xml_of(&plain), xml_of(&ints));
+    assert!(
+        !plain.contains_key("resources/packaging.json"),
+        "a plain FMU has no packaging options"
+    );
+    assert_eq!(ints["resources/packaging.json"], b"{\n  \"enumerations_as_integers\": true\n}\n");
+    assert!(
+        !xml.contains("<Enumeration") && !xml.contains("<TypeDefinitions>"),
+        "an Enumeration is left"
+    );
+
+    let bearing = Bearing::default_preset();
+    let mut enumerations = 0;
+    for (vr, name, row) in trb::variables::expanded(bearing.roller_count) {
+        let (plain_head, plain_type) = scalar_variable(&plain_xml, &name);
+        let (head, ty) = scalar_variable(&xml, &name);
+        assert!(head.contains(&format!(r#"valueReference="{vr}""#)), "{head}");
+        if row.enumeration.is_none() {
+            assert_eq!((head, ty), (plain_head, plain_type), "{name} changed");
+            continue;
+        }
+        enumerations += 1;
+        // Same range and start; the items' values and names in the description.
+        let declared = format!(r#" declaredType="{}""#, row.enumeration.unwrap().name);
+        assert_eq!(ty, plain_type.replace("<Enumeration", "<Integer").replace(&declared, ""), "{name}");
+        assert!(ty.contains(r#" min="0""#) && ty.contains(" max=") && ty.contains(" start="), "{ty}");
+        let items = trb::packaging::items(row);
+        assert!(head.contains(&format!("(values: {items})")), "{head}");
+    }
+    assert!(enumerations >= 10, "{enumerations} enumeration parameters");
+    let (head, ty) = scalar_variable(&xml, "fidelity");
+    assert!(head.contains("(values: 0 quasiStatic, 1 dynamic, 2 quasiDynamic)"), "{head}");
+    assert_eq!(ty.trim(), r#"<Integer min="0" max="2" start="0"/>"#);
+
+    // One source of truth: the XML is the generator's with that switch, its GUID what the
+    // binary expects from the packaged options.
+    let packaging = trb::packaging::Packaging {
+        enumerations_as_integers: true,
+        start: Vec::new(),
+    };
+    let (want_xml, guid) = model_description::generate_with(&bearing, &packaging).unwrap();
+    assert_eq!(xml, want_xml);
+    assert_ne!(guid, model_description::guid(&bearing));
+    assert!(stdout(&o).contains(&guid));
+}
+
+#[test]
+fn fmu_set_packages_start_values_checked_against_the_variable() {
+    let s = Scratch::new("fmuset");
+    let lib = fake_library(&s);
+    let out = s.path("set.fmu");
+    let o = trb(&[
+        "fmu",
+        "--library",
+        p(&lib),
+        "--out",
+        p(&out),
+        "--set",
+        "fidelity=2",
+        "--set",
+        "supply=grease",
+        "--set",
+        "mu=0.25",
+        "--set",
+        "skewModel=false",
+        "--set",
+        "roller[3].dD=-2e-6",
+        "--set",
+        "supply=oilAir",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let entries = read_zip(&out);
+    let xml = String::from_utf8(entries["modelDescription.xml"].clone()).unwrap();
+    for (name, start) in [
+        ("fidelity", "2"),
+        ("supply", "3"),
+        ("mu", "0.25"),
+        ("skewModel", "false"),
+        ("roller[3].dD", "-2e-6"),
+    ] {
+        let (_, ty) = scalar_variable(&xml, name);
+        assert!(ty.contains(&format!(r#" start="{start}""#)), "{name}: {ty}");
+    }
+    assert!(xml.contains(r#"<Enumeration declaredType="Fidelity" min="0" max="2" start="2"/>"#));
+    let json: serde_json::Value = serde_json::from_slice(&entries["resources/packaging.json"]).unwrap();
+    assert_eq!(
+        json,
+        serde_json::json!({"start": {"fidelity": 2, "mu": 0.25, "roller[3].dD": -2e-6, "skewModel": false, "supply": 3}})
+    );
+    // The documentation's variable table shows the packaged start.
+    let html = String::from_utf8(entries["documentation/index.html"].clone()).unwrap();
+    assert!(html.contains("roller[3].dD"));
+
+    for (set, needle) in [
+        ("nosuch=1", "unknown variable `nosuch`"),
+        ("speed=100", "`speed` is an input, not a parameter"),
+        ("powerLoss=1", "`powerLoss` is an output, not a parameter"),
+        ("mu=high", "`mu`: expected a number"),
+        ("mu=2.5", "`mu` = 2.5 is out of range: it must be [0, 2]"),
+        (
+            "fidelity=3",
+            "`fidelity` = 3 is out of range: it must be [0, 2] (0 quasiStatic, 1 dynamic, 2 quasiDynamic)",
+        ),
+        (
+            "fidelity=veryFast",
+            "`fidelity`: expected an item of Fidelity: 0 quasiStatic, 1 dynamic, 2 quasiDynamic",
+        ),
+        ("slices=1", "`slices` = 1 is out of range"),
+        ("skewModel=yes", "`skewModel`: expected true or false"),
+        ("roller[18].dD=0", "unknown variable `roller[18].dD`"),
+        ("fidelity", "not NAME=VALUE"),
+    ] {
+        let bad = s.path("bad.fmu");
+        let o = trb(&["fmu", "--library", p(&lib), "--out", p(&bad), "--set", set]);
+        assert_eq!(o.status.code(), Some(2), "--set {set}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "--set {set}: `{}` misses {needle}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+        assert!(!bad.exists(), "--set {set}: an FMU was written");
+    }
+}
+
+#[test]
+fn fmu_of_another_bearing_goes_by_default_to_its_own_file() {
+    let s = Scratch::new("fmuownfile");
+    let lib = fake_library(&s);
+    let name = format!("CLI test {}", std::process::id());
+    let text = PRESETS[2].1.replace("\"name\": \"32008\"", &format!("\"name\": \"{name}\""));
+    let file = s.write("bearing.json", &text);
+    let o = trb(&["fmu", "--bearing", p(&file), "--library", p(&lib)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let id = format!("TRB_CLI_test_{}", std::process::id());
+    assert_eq!(model_description::model_identifier(&Bearing::from_json(&text).unwrap()), id);
+    // <target dir>/fmu/<modelIdentifier>.fmu, named in the summary
+    let target = Path::new(EXE).parent().unwrap().parent().unwrap();
+    let fmu = target.join("fmu").join(format!("{id}.fmu"));
+    let written = fmu.is_file();
+    let _ = std::fs::remove_file(&fmu);
+    let _ = std::fs::remove_file(fmu.with_extension("linux64.debug"));
+    assert!(written, "{} not written; stdout {}", fmu.display(), stdout(&o));
+    assert!(
+        stdout(&o).starts_with(&format!("{}: modelIdentifier {id}, bearing {name}", fmu.display())),
+        "{}",
+        stdout(&o)
+    );
+}
+
+/// The comma-separated names in `text` between `before` and the next `)`, whitespace (and
+/// the help's line wrapping) collapsed.
+fn listed_after(text: &str, before: &str) -> Vec<String> {
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let rest = flat.split(before).nth(1).unwrap_or_else(|| panic!("`{before}` not in `{flat}`"));
+    rest.split(')').next().unwrap().split(", ").map(str::to_string).collect()
+}
+
+#[test]
+fn presets_agree_in_the_table_the_help_the_error_and_the_readme() {
+    let table: Vec<String> = PRESETS.iter().map(|(n, _)| n.to_string()).collect();
+    assert!(table.contains(&"TRB130x230-W25".to_string()));
+    let help = trb(&["fmu", "--help"]);
+    assert!(help.status.success());
+    assert_eq!(listed_after(&stdout(&help), "a preset ("), table, "fmu --help");
+    let show = trb(&["bearing", "show", "--help"]);
+    let line = stdout(&show)
+        .lines()
+        .find(|l| l.contains("The preset's name: "))
+        .unwrap_or_default()
+        .to_string();
+    assert_eq!(
+        listed_after(&format!("{line})"), "The preset's name: "),
+        table,
+        "bearing show --help"
+    );
+    let unknown = trb(&["fmu", "--bearing", "NO-SUCH-PRESET"]);
+    assert_eq!(listed_after(&stderr(&unknown), "neither a preset ("), table, "the error message");
+    // README, "Presets and your bearing": the first column of its table, in any order.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let section = readme
+        .split("## Presets and your bearing")
+        .nth(1)
+        .expect("README has the presets section");
+    let mut listed: Vec<String> = section
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .filter_map(|l| l.strip_prefix("| `"))
+        .map(|l| l.split('`').next().unwrap().to_string())
+        .collect();
+    let mut want = table.clone();
+    listed.sort();
+    want.sort();
+    assert_eq!(listed, want, "README's preset table");
+}
+
+#[test]
+fn demo_says_which_files_and_plot_it_writes() {
+    let s = Scratch::new("demo");
+    let csv = s.path("demo.csv");
+    let o = trb(&["demo", "--skip-dynamic", "--csv", p(&csv)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let first = stdout(&o).lines().next().unwrap_or_default().to_string();
+    assert!(
+        first.starts_with(&format!("Writes {}", p(&csv))) && first.contains("no plot"),
+        "{first}"
+    );
+    assert!(csv.is_file());
 }

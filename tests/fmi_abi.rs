@@ -1322,3 +1322,44 @@ fn serialized_state_replays_bit_for_bit_at_every_fidelity_and_integrator() {
         }
     }
 }
+
+#[test]
+fn packaged_start_values_are_where_an_instance_starts_and_resets_to() {
+    let dir = resource_dir("packaged-starts", Some(&preset_text()));
+    let mut packaging = trb::packaging::Packaging::default();
+    packaging.set(trb::packaging::start_value("supply", "grease", 17).unwrap());
+    packaging.set(trb::packaging::start_value("cageSlipRate", "0.002", 17).unwrap());
+    std::fs::write(dir.join(trb::packaging::RESOURCE), packaging.to_json()).unwrap();
+    let uri = file_uri(&dir);
+    let bearing = Bearing::default_preset();
+    let guid = model_description::guid_with(&bearing, &packaging).unwrap();
+    // The plain FMU's GUID does not describe these start values.
+    refused(instantiate(Some("x"), FMI2_CO_SIMULATION, Some(default_guid()), Some(&uri), false)).assert_logged("does not match");
+    let fmu =
+        instantiate(Some("x"), FMI2_CO_SIMULATION, Some(&guid), Some(&uri), false).unwrap_or_else(|log| panic!("{:#?}", log.messages()));
+    // The start values, read in initialization mode.
+    let starts = |fmu: &Fmu| {
+        assert_eq!(fmu.setup(0.0, Some(1.0)), FMI2_OK);
+        assert_eq!(unsafe { fmi2EnterInitializationMode(fmu.c) }, FMI2_OK);
+        let mut supply = -1;
+        assert_eq!(unsafe { fmi2GetInteger(fmu.c, &var::SUPPLY, 1, &mut supply) }, FMI2_OK);
+        (supply, fmu.get_reals(&[var::CAGE_SLIP_RATE]).1[0])
+    };
+    assert_eq!(starts(&fmu), (2, 0.002));
+    assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, FMI2_OK, "{:#?}", fmu.log.messages());
+    // The same run as an instance of the plain FMU with those values set.
+    let explicit = Fmu::new();
+    assert_eq!(explicit.set_integer(var::SUPPLY, 2), FMI2_OK);
+    assert_eq!(explicit.set_real(var::CAGE_SLIP_RATE, 0.002), FMI2_OK);
+    explicit.init(Some(1.0));
+    assert_eq!(fmu.outputs(), explicit.outputs());
+    assert_eq!(run(&fmu, 3, 1e-3), run(&explicit, 3, 1e-3));
+    // fmi2Reset returns to the packaged start values, not the bearing's defaults.
+    assert_eq!(fmu.set_integer(var::SUPPLY, 0), FMI2_ERROR, "fixed after initialization");
+    assert_eq!(unsafe { fmi2Reset(fmu.c) }, FMI2_OK);
+    assert_eq!(starts(&fmu), (2, 0.002));
+
+    // A packaging file with a value out of range is refused, naming it.
+    std::fs::write(dir.join(trb::packaging::RESOURCE), r#"{"start": {"supply": 7}}"#).unwrap();
+    refused(instantiate(Some("x"), FMI2_CO_SIMULATION, Some(&guid), Some(&uri), false)).assert_logged("supply");
+}

@@ -137,7 +137,8 @@ fn the_default_bearings_torque_is_within_30_percent_of_skf() {
 
 /// ISO 281's modified rating life on the default bearing at the [W25] reference point
 /// (3500 rpm, Fa 30 kN): κ from the oil's kinematic viscosity at its temperature over ν1 at
-/// that speed and pitch diameter, a_ISO from κ and e_C C_u / P, L10m = a_ISO L10. A hotter oil
+/// that speed and pitch diameter, a_ISO from κ and e_C C_u / P (e_C by default ISO 281's normal
+/// cleanliness), L10m = a_ISO L10. A hotter oil
 /// lowers κ and the life; e_C = 0 leaves a_ISO at its floor 0.1.
 #[test]
 fn the_modified_rating_life_follows_iso_281() {
@@ -159,7 +160,15 @@ fn the_modified_rating_life_follows_iso_281() {
     let rating = trb::rating::BearingRating::new(&b, b.slices);
     let p = trb::rating::equivalent_load(out.reaction_fy.hypot(out.reaction_fz), out.reaction_fx, b.cup_angle);
     let cu = trb::rating::fatigue_load_limit(rating.c_0r, b.pitch_diameter);
-    let a_iso = trb::rating::life_modification_factor(kappa, cu / p);
+    // the default contamination factor: ISO 281's normal cleanliness at this pitch diameter
+    // (Table 13: 0.6-0.5 below 100 mm, 0.8-0.6 from 100 mm)
+    let e_c = Simulation::new(b.clone()).params().contamination_ec;
+    let normal = if b.pitch_diameter < 0.1 { 0.5..=0.6 } else { 0.6..=0.8 };
+    assert!(
+        normal.contains(&e_c),
+        "default e_C {e_c} outside ISO 281's normal cleanliness {normal:?}"
+    );
+    let a_iso = trb::rating::life_modification_factor(kappa, e_c * cu / p);
     eprintln!(
         "TRB130x230, 3500 rpm, Fa 30 kN: L10 {:.0} h, L10r {:.0} h, L10m {:.0} h (a_ISO {:.3}, kappa {:.2}, C_u {:.0} N, P {:.0} N)",
         out.life_l10, out.life_l10r, out.life_l10m, out.life_a_iso, out.oil_kappa, cu, p

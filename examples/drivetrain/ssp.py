@@ -13,7 +13,7 @@ loop of drivetrain.py.
 
 from __future__ import annotations
 
-import re
+import subprocess
 import sys
 import zipfile
 from pathlib import Path
@@ -108,32 +108,33 @@ def write_ssd(path: Path = SSD) -> Path:
     return path
 
 
-def enumerations_as_integers(fmu: Path, out: Path) -> Path:
-    """A copy of `fmu` whose modelDescription.xml declares its Enumeration variables as
-    Integer (same value references, start values and bounds; the binary unchanged: FMI 2.0
-    sets both with fmi2SetInteger). libcosim (libcosimpy 0.0.6) ignores Enumeration
-    variables, so an SSP parameter set could not reach `causality` otherwise."""
-    with zipfile.ZipFile(fmu) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
-        for item in src.infolist():
-            data = src.read(item.filename)
-            if item.filename == "modelDescription.xml":
-                text = data.decode("utf-8")
-                text, n = re.subn(r'<Enumeration declaredType="[^"]*"', "<Integer", text)
-                assert n > 0, "no Enumeration variable in the bearing's model description"
-                data = text.encode("utf-8")
-            dst.writestr(item, data)
+def build_integer_bearing_fmu(out: Path = dt.REPO / "target" / "fmu" / f"{dt.BEARING_PRESET}-integers.fmu") -> Path:
+    """The bearing FMU with its Enumeration parameters declared as Integers (`trb fmu
+    --enumerations-as-integers`: same value references, start values and ranges, the same
+    binary). libcosim (libcosimpy 0.0.6) ignores Enumeration variables, so an SSP parameter
+    set could not reach `causality` otherwise."""
+    subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "--", "fmu", "--bearing", dt.BEARING_PRESET, "--enumerations-as-integers", "--out", str(out)],
+        check=True,
+        cwd=dt.REPO,
+    )
     return out
 
 
-def package_ssp(out: Path, bearing_fmu: Path = dt.BEARING_FMU, shaft_fmu: Path = dt.SHAFT_FMU) -> Path:
-    """drivetrain.ssp: the committed SystemStructure.ssd, the shaft FMU and the bearing FMU
-    (its Enumeration parameters declared Integer, see `enumerations_as_integers`)."""
+def package_ssp(out: Path, bearing_fmu: Path | None = None, shaft_fmu: Path = dt.SHAFT_FMU) -> Path:
+    """drivetrain.ssp: the committed SystemStructure.ssd, the shaft FMU and the bearing FMU,
+    packaged with its Enumeration parameters declared as Integers (`build_integer_bearing_fmu`
+    when not given)."""
+    if bearing_fmu is None:
+        bearing_fmu = build_integer_bearing_fmu()
+    with zipfile.ZipFile(bearing_fmu) as z:
+        if b"<Enumeration" in z.read("modelDescription.xml"):
+            raise ValueError(f"{bearing_fmu} declares Enumerations, which libcosim ignores: package it with `trb fmu --enumerations-as-integers`")
     out.parent.mkdir(parents=True, exist_ok=True)
-    bearing_copy = enumerations_as_integers(bearing_fmu, out.with_name("TaperedRollerBearing-integers.fmu"))
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
         z.write(SSD, "SystemStructure.ssd")
         z.write(shaft_fmu, SHAFT_SOURCE)
-        z.write(bearing_copy, BEARING_SOURCE)
+        z.write(bearing_fmu, BEARING_SOURCE)
     return out
 
 
@@ -197,7 +198,6 @@ def main():
     write_ssd()
     print(f"wrote {SSD}")
     if "--run" in sys.argv:
-        dt.build_bearing_fmu()
         dt.build_shaft_fmu()
         ssp = package_ssp(dt.REPO / "target" / "drivetrain" / "drivetrain.ssp")
         res = run_libcosim(ssp)

@@ -20,6 +20,12 @@ pub const PRESETS: &[(&str, &str)] = &[
     ("TRB130x230-W25", include_str!("../../presets/TRB130x230-W25.json")),
 ];
 
+/// The presets' names in table order, comma-separated, as help texts and error messages list
+/// them.
+pub fn preset_names() -> String {
+    PRESETS.iter().map(|(name, _)| *name).collect::<Vec<_>>().join(", ")
+}
+
 /// The JSON Schema (draft 2020-12) of a bearing file, derived from the same structures that
 /// read it; shipped as `presets/bearing.schema.json` (a test keeps the two equal).
 pub fn bearing_file_schema() -> String {

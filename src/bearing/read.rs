@@ -27,10 +27,7 @@ impl Bearing {
             .iter()
             .find(|(n, _)| n.eq_ignore_ascii_case(name))
             .map(|(_, t)| *t)
-            .ok_or_else(|| {
-                let names: Vec<&str> = PRESETS.iter().map(|(n, _)| *n).collect();
-                err("", format!("unknown preset `{name}`; presets are {}", names.join(", ")))
-            })?;
+            .ok_or_else(|| err("", format!("unknown preset `{name}`; presets are {}", preset_names())))?;
         Bearing::from_json(text)
     }
 

@@ -77,7 +77,7 @@ pub struct EstimateArgs {
 
 #[derive(Debug, Clone, Args)]
 pub struct ShowArgs {
-    /// The preset's name.
+    #[arg(help = format!("The preset's name: {}", trb::bearing::preset_names()))]
     pub name: String,
     /// Write the file here instead of to stdout.
     #[arg(long, value_name = "FILE.json")]

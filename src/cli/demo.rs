@@ -2,7 +2,8 @@
 //! (compiled into the program, quasi-static) to `<target dir>/demo.csv` and print a short
 //! table; then run `scenarios/demo_dynamic.json`, the [W25] reference case in the dynamic
 //! model, to `<target dir>/demo_dynamic.csv`, print skew, tilt and torque with the wall time,
-//! and draw skew and tilt against time in `<target dir>/demo_dynamic.svg`.
+//! and draw skew and tilt against time in `<target dir>/demo_dynamic.svg`. It says first which
+//! files and which plot it writes, and where.
 
 use super::scenario::Scenario;
 use super::svg::{self, Series};
@@ -42,6 +43,9 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
         Some(p) => p,
         None => paths::target_dir()?.join("demo.csv"),
     };
+    let dynamic_csv = csv.with_file_name("demo_dynamic.csv");
+    println!("{}", files_line(&csv, &dynamic_csv, args.skip_dynamic));
+    println!();
     let summary = simulate::run_to_file(&scenario, &csv, false)?;
 
     println!("{}", scenario.description);
@@ -53,9 +57,23 @@ pub fn run(args: DemoArgs) -> Result<(), CliError> {
     println!("CSV: {}", simulate::summary_line(&scenario, &summary, &csv));
     if !args.skip_dynamic {
         println!();
-        run_dynamic(&base, &csv.with_file_name("demo_dynamic.csv"))?;
+        run_dynamic(&base, &dynamic_csv)?;
     }
     Ok(())
+}
+
+/// Where the demo writes: the CSVs and, unless the dynamic part is skipped, the plot (the
+/// SVG beside the dynamic CSV).
+fn files_line(csv: &Path, dynamic_csv: &Path, skip_dynamic: bool) -> String {
+    if skip_dynamic {
+        return format!("Writes {} (no plot: the dynamic part, which draws it, is skipped)", csv.display());
+    }
+    format!(
+        "Writes {}, {} and one plot: {} (roller skew and tilt against time)",
+        csv.display(),
+        dynamic_csv.display(),
+        dynamic_csv.with_extension("svg").display()
+    )
 }
 
 fn read_back(csv: &Path) -> Result<String, CliError> {
@@ -83,7 +101,7 @@ fn run_dynamic(base: &Path, csv: &Path) -> Result<(), CliError> {
     std::fs::write(&svg, skew_and_tilt_svg(&text).map_err(CliError::failed)?)
         .map_err(|e| CliError::failed(format!("cannot write {}: {e}", svg.display())))?;
     println!("CSV: {}", simulate::summary_line(&scenario, &summary, csv));
-    println!("SVG: {} (roller skew and tilt against time)", svg.display());
+    println!("Plot: {} (roller skew and tilt against time)", svg.display());
     Ok(())
 }
 
@@ -266,6 +284,18 @@ mod tests {
         assert!(svg.contains("Roller skew") && svg.contains("Roller tilt"));
         assert_eq!(svg.matches("<polyline").count(), 4, "four curves");
         assert!(skew_and_tilt_svg("time,skew.max\n0,1\n").is_err());
+    }
+
+    #[test]
+    fn the_files_line_names_the_plot_and_where_it_goes() {
+        let (csv, dynamic) = (Path::new("/t/demo.csv"), Path::new("/t/demo_dynamic.csv"));
+        let line = files_line(csv, dynamic, false);
+        assert!(line.contains("/t/demo.csv") && line.contains("/t/demo_dynamic.csv"), "{line}");
+        assert!(
+            line.contains("one plot: /t/demo_dynamic.svg (roller skew and tilt against time)"),
+            "{line}"
+        );
+        assert!(files_line(csv, dynamic, true).contains("no plot"));
     }
 
     #[test]

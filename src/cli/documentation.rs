@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 use trb::bearing::{Bearing, ContactLaw, Kind, LubricationModel};
 use trb::model::ModelError;
-use trb::model_description::MODEL_IDENTIFIER;
+use trb::model_description::model_identifier;
 use trb::simulation::{AccessError, Simulation};
 use trb::variables::{self, Causality, Variable};
 use trb::variables_doc::{causality_name, range, type_name, variability_name};
@@ -133,11 +133,12 @@ details{margin:0.3em 0 1em 0}summary{cursor:pointer}";
 pub fn generate(bearing: &Bearing, bearing_json: &str, xml: &str, guid: &str) -> String {
     let z = bearing.roller_count;
     let starts = start_values(xml);
+    let id = model_identifier(bearing);
     let mut h = String::new();
     let _ = writeln!(h, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">");
-    let _ = writeln!(h, "<title>{MODEL_IDENTIFIER} FMU \u{2014} bearing {}</title>", esc(&bearing.name));
+    let _ = writeln!(h, "<title>{id} FMU \u{2014} bearing {}</title>", esc(&bearing.name));
     let _ = writeln!(h, "<style>{STYLE}</style>\n</head>\n<body>");
-    let _ = writeln!(h, "<h1>{MODEL_IDENTIFIER}: tapered roller bearing element</h1>");
+    let _ = writeln!(h, "<h1>{id}: tapered roller bearing element</h1>");
     let _ = writeln!(
         h,
         "<p>FMI 2.0 Co-Simulation FMU, version {}, packaged for bearing <strong>{}</strong> ({} rollers). \
@@ -658,7 +659,7 @@ result = simulate_fmu(
 print(result["time"][-1], result["frictionTorque"][-1])  # {rpm} rpm at t = 0"#,
         speed = b.speed,
         fx = b.fx,
-        id = MODEL_IDENTIFIER,
+        id = model_identifier(b),
         slices = b.slices,
         lub = match b.lubrication {
             LubricationModel::Ehl => 0,
@@ -687,7 +688,7 @@ while t < 0.1:
     torque, = fmu.getReal([vr["frictionTorque"]])
 fmu.terminate()
 fmu.freeInstance()"#,
-        id = MODEL_IDENTIFIER,
+        id = model_identifier(b),
         speed = b.speed,
         fx = b.fx,
     );

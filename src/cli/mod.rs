@@ -41,11 +41,11 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Package the FMU (default: <cargo target dir>/fmu/TaperedRollerBearing.fmu).
+    /// Package the FMU (default: <cargo target dir>/fmu/TaperedRollerBearing.fmu; another bearing's: <cargo target dir>/fmu/TRB_<name>.fmu).
     Fmu(package::FmuArgs),
     /// Run a scenario file (see scenarios/README.md) and write the results as CSV.
     Simulate(simulate::SimulateArgs),
-    /// Package the default FMU, run scenarios/demo.json and print a short table.
+    /// Package the default FMU, run scenarios/demo.json and demo_dynamic.json, print short tables and where the CSVs and the plot go.
     Demo(demo::DemoArgs),
     /// Run the cases of the studies [D19], [L22], [Y22]; write docs/results-studies.md and docs/figures/.
     Study(study::StudyArgs),

@@ -75,11 +75,11 @@ fn target_dir_of(profile_dir: &Path) -> PathBuf {
     parent.to_path_buf()
 }
 
-/// Default location of the packaged FMU: `<target dir>/fmu/TaperedRollerBearing.fmu`.
-pub fn default_fmu_path() -> Result<PathBuf, CliError> {
-    Ok(target_dir()?
-        .join("fmu")
-        .join(format!("{}.fmu", trb::model_description::MODEL_IDENTIFIER)))
+/// Default location of the packaged FMU of model identifier `model_identifier`:
+/// `<target dir>/fmu/<model_identifier>.fmu` (the default bearing's
+/// `<target dir>/fmu/TaperedRollerBearing.fmu`).
+pub fn default_fmu_path(model_identifier: &str) -> Result<PathBuf, CliError> {
+    Ok(target_dir()?.join("fmu").join(format!("{model_identifier}.fmu")))
 }
 
 /// The crate's cdylib that cargo built with this executable.

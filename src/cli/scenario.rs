@@ -95,13 +95,7 @@ struct TableFile {
     values: Vec<f64>,
 }
 
-/// A parameter value of the variable's FMI type.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Value {
-    Real(f64),
-    Integer(i32),
-    Boolean(bool),
-}
+pub use trb::variables::Value;
 
 /// An input signal u(t).
 #[derive(Debug, Clone, PartialEq)]

@@ -11,6 +11,7 @@ use super::snapshot::{Clock, Snapshot};
 use super::types::*;
 use crate::model::{ModelError, Severity, SolveReport};
 use crate::model_description;
+use crate::packaging::Packaging;
 use crate::simulation::{AccessError, Simulation};
 use crate::variables::{self as var, Causality, VarType, Variability};
 use crate::warnings::Warning;
@@ -30,6 +31,8 @@ pub struct Instance {
     snapshots: Vec<*mut Snapshot>,
     /// The warnings logged already (`warnings.rs`: each cause once per instance).
     warned: u32,
+    /// The start values packaged into the FMU, set again by fmi2Reset.
+    packaging: Packaging,
 }
 
 /// Rounding noise allowed when comparing communication points.
@@ -111,8 +114,14 @@ impl Instance {
         if let Some(w) = &loaded.warning {
             log.warning(format_args!("fmi2Instantiate: {w}"));
         }
-        let bearing = loaded.bearing;
-        let expected = model_description::guid(&bearing);
+        let (bearing, packaging) = (loaded.bearing, loaded.packaging);
+        let expected = match model_description::guid_with(&bearing, &packaging) {
+            Ok(g) => g,
+            Err(e) => {
+                log.error(format_args!("fmi2Instantiate: resources/{}: {e}", crate::packaging::RESOURCE));
+                return None;
+            }
+        };
         if guid.to_bytes() != expected.as_bytes() {
             log.error(format_args!(
                 "fmi2Instantiate: fmuGUID \"{}\" does not match the model description of bearing {} (\"{expected}\")",
@@ -127,11 +136,15 @@ impl Instance {
             bearing.roller_count,
             location.filter(|l| !l.is_empty()).unwrap_or("(none)")
         ));
+        let mut sim = Simulation::new(bearing);
+        // The same start values applied without error to the model description's element.
+        let _ = packaging.apply(&mut sim);
         Some(Box::new(Instance {
             magic: MAGIC,
             log,
             machine: Machine::Alive(State::Instantiated),
-            sim: Simulation::new(bearing),
+            sim,
+            packaging,
             clock: Clock::NEW,
             snapshots: Vec::new(),
             warned: 0,
@@ -375,6 +388,11 @@ impl Instance {
             return FMI2_ERROR;
         }
         self.sim.reset();
+        if let Err(e) = self.packaging.apply(&mut self.sim) {
+            self.log.error(format_args!("fmi2Reset: {e}"));
+            self.machine = Machine::Alive(State::Error);
+            return FMI2_ERROR;
+        }
         self.clock = Clock::NEW;
         self.machine = Machine::Alive(State::Instantiated);
         self.warned = 0;

@@ -1,12 +1,17 @@
 //! The bearing an instance simulates: `<fmuResourceLocation>/bearing.json`, written by the
-//! packager, or the compiled-in default preset when no usable location or file is given.
+//! packager, or the compiled-in default preset when no usable location or file is given; and
+//! how it was packaged, `<fmuResourceLocation>/packaging.json` (`crate::packaging`: start
+//! values chosen at packaging, Enumerations declared as Integers), none when that file is
+//! missing.
 
 use crate::bearing::{Bearing, DEFAULT_PRESET};
+use crate::packaging::{self, Packaging};
 use std::path::{Path, PathBuf};
 
-/// The bearing, and a warning to log when it is the fallback preset.
+/// The bearing, how it was packaged, and a warning to log when it is the fallback preset.
 pub struct Loaded {
     pub bearing: Bearing,
+    pub packaging: Packaging,
     pub warning: Option<String>,
 }
 
@@ -35,26 +40,36 @@ pub fn load(location: Option<&str>) -> Result<Loaded, String> {
     if location.is_empty() {
         return Ok(Loaded {
             bearing: Bearing::default_preset(),
+            packaging: Packaging::default(),
             warning: Some(format!(
                 "no fmuResourceLocation given; using the compiled-in bearing {DEFAULT_PRESET}"
             )),
         });
     }
-    let path = resource_dir(location)?.join("bearing.json");
-    match std::fs::read_to_string(&path) {
-        Ok(text) => {
-            let bearing = Bearing::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-            Ok(Loaded { bearing, warning: None })
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Loaded {
-            bearing: Bearing::default_preset(),
-            warning: Some(format!(
+    let dir = resource_dir(location)?;
+    let path = dir.join("bearing.json");
+    let (bearing, warning) = match std::fs::read_to_string(&path) {
+        Ok(text) => (Bearing::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?, None),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => (
+            Bearing::default_preset(),
+            Some(format!(
                 "{} not found; using the compiled-in bearing {DEFAULT_PRESET}",
                 path.display()
             )),
-        }),
-        Err(e) => Err(format!("cannot read {}: {e}", path.display())),
-    }
+        ),
+        Err(e) => return Err(format!("cannot read {}: {e}", path.display())),
+    };
+    let path = dir.join(packaging::RESOURCE);
+    let packaging = match std::fs::read_to_string(&path) {
+        Ok(text) => Packaging::from_json(&text, bearing.roller_count).map_err(|e| format!("{}: {e}", path.display()))?,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Packaging::default(),
+        Err(e) => return Err(format!("cannot read {}: {e}", path.display())),
+    };
+    Ok(Loaded {
+        bearing,
+        packaging,
+        warning,
+    })
 }
 
 #[cfg(test)]

@@ -23,6 +23,7 @@ import ctypes
 import json
 import math
 import os
+import re
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
@@ -429,3 +430,26 @@ def close_enough(a: float, b: float, rel: float = 1e-12, abs_: float = 1e-12) ->
 
 def pytest_report_header(config):
     return f"FMU under test: {FMU_PATH.relative_to(REPO)} (repo {REPO})"
+
+
+# The FMU Compliance Checker (../shared/tools/fmuCheck.linux64); TRB_FMUCHECK names another copy.
+FMUCHECK = Path(os.environ.get("TRB_FMUCHECK", REPO.parent / "shared" / "tools" / "fmuCheck.linux64"))
+
+
+def fmu_check_passes(fmu: Path, workdir: Path, stop_time: float) -> str:
+    """fmuCheck -k cs on `fmu`: the XML checks and a co-simulation to `stop_time` in 1 ms
+    steps at log level 3 (warnings); asserts that the FMU and the checker both report zero
+    warnings and errors and that it wrote its results; returns what it printed."""
+    proc = subprocess.run(
+        [str(FMUCHECK), "-k", "cs", "-h", "1e-3", "-s", str(stop_time), "-l", "3", "-o", str(workdir / "out.csv"), "-t", str(workdir), str(fmu)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    out = proc.stdout + proc.stderr
+    assert proc.returncode == 0, f"fmuCheck exited with {proc.returncode}:\n{out}"
+    assert "FMU check summary" in out, out
+    assert re.search(r"FMU reported:\s*0 warning\(s\) and error\(s\)", out), out
+    assert re.search(r"Checker reported:\s*0 Warning\(s\)\s*0 Error\(s\)", out), out
+    assert (workdir / "out.csv").stat().st_size > 0
+    return out

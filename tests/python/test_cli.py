@@ -2,6 +2,7 @@
 `demo`, and clear errors for bad scenarios."""
 
 import json
+import os
 
 import pytest
 
@@ -65,8 +66,12 @@ def test_bad_scenario_names_the_field(tmp_path, change, field):
 
 def test_fmu_out_to_a_directory(tmp_path):
     proc = run_cli("fmu", "--bearing", "32008", "--out", tmp_path)
-    assert (tmp_path / "TaperedRollerBearing.fmu").is_file()
-    assert "32008" in proc.stdout
+    assert (tmp_path / "TRB_32008.fmu").is_file()
+    assert "32008" in proc.stdout and str(tmp_path / "TRB_32008.fmu") in proc.stdout
+    # a directory that does not exist yet, named with a trailing separator, is created
+    new = tmp_path / "new" / "fmus"
+    run_cli("fmu", "--bearing", "32008", "--out", f"{new}{os.sep}")
+    assert (new / "TRB_32008.fmu").is_file()
 
 
 def test_demo_runs_and_prints_a_table(tmp_path):

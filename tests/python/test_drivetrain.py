@@ -14,7 +14,7 @@ import time
 import numpy as np
 import pytest
 
-from conftest import REPO
+from conftest import REPO, run_cli
 
 sys.path.insert(0, str(REPO / "examples" / "drivetrain"))
 import drivetrain as dt  # noqa: E402
@@ -23,6 +23,14 @@ import drivetrain as dt  # noqa: E402
 @pytest.fixture(scope="module")
 def fmus(package_preset):
     return package_preset(dt.BEARING_PRESET), dt.build_shaft_fmu()
+
+
+@pytest.fixture(scope="module")
+def integer_bearing_fmu(fmus, tmp_path_factory):
+    """The bearing FMU for the SSP: its Enumeration parameters declared as Integers."""
+    out = tmp_path_factory.mktemp("integers") / "bearing-integers.fmu"
+    run_cli("fmu", "--bearing", dt.BEARING_PRESET, "--enumerations-as-integers", "--out", out)
+    return out
 
 
 def run(fmus, **kw):
@@ -88,7 +96,7 @@ def test_committed_ssd_is_the_generated_one():
     assert ssp.SSD.read_text() == ssp.ssd_text(), "run python examples/drivetrain/ssp.py to rewrite SystemStructure.ssd"
 
 
-def test_libcosim_runs_the_ssp_like_fmpy(fmus, tmp_path):
+def test_libcosim_runs_the_ssp_like_fmpy(fmus, integer_bearing_fmu, tmp_path):
     """The same system from SystemStructure.ssd in libcosim's fixed-step (Jacobi) algorithm:
     its bearing outputs at t + h are the equilibrium of the load at t (the Gauss-Seidel
     loop's at t), to 1e-5 of the load."""
@@ -98,7 +106,7 @@ def test_libcosim_runs_the_ssp_like_fmpy(fmus, tmp_path):
     import ssp
 
     log_output_level(CosimLogLevel.WARNING)
-    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=fmus[0], shaft_fmu=fmus[1])
+    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=integer_bearing_fmu, shaft_fmu=fmus[1])
     lc = ssp.run_libcosim(package, stop=1.0, step=0.002)
     fm = run(fmus, stop=1.0, step=0.002)
     p = dict(dt.SHAFT_PARAMETERS)
@@ -135,13 +143,13 @@ def test_thermal_preload_and_speed(fmus):
     assert fast["reactions"][-1][0][0] > a_cold[0]
 
 
-def test_fmpy_ssp_master_runs_the_ssp(fmus, tmp_path):
+def test_fmpy_ssp_master_runs_the_ssp(fmus, integer_bearing_fmu, tmp_path):
     """fmpy's SSP master (Jacobi, every connection starting at 0) on the same .ssp: after a
     start-up transient of a few steps, the equilibrium of the load one step back, as the
     Gauss-Seidel loop, to 1e-5 of the load."""
     import ssp
 
-    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=fmus[0], shaft_fmu=fmus[1])
+    package = ssp.package_ssp(tmp_path / "drivetrain.ssp", bearing_fmu=integer_bearing_fmu, shaft_fmu=fmus[1])
     fs = ssp.run_fmpy(package, stop=1.0, step=0.002)
     fm = run(fmus, stop=1.0, step=0.002)
     np.testing.assert_allclose(fs["time"], fm["time"], rtol=0, atol=1e-12)

@@ -3,7 +3,6 @@ fmu-manipulation-toolbox), the contract's names, capabilities and units, and agr
 the variable table modelDescription/variables.json (the single source of truth)."""
 
 import json
-import os
 import re
 import subprocess
 import sys
@@ -13,7 +12,7 @@ from pathlib import Path
 import pytest
 from fmpy.validation import validate_fmu
 
-from conftest import DEFAULT_PRESET, MODEL_IDENTIFIER, PRESETS, REPO
+from conftest import DEFAULT_PRESET, FMUCHECK, MODEL_IDENTIFIER, PRESETS, REPO, fmu_check_passes
 
 # The contract (shared spec INTERFACE.md): names that must exist, with their causality.
 CONTRACT_PARAMETERS = [
@@ -39,29 +38,12 @@ def fmutool_check(path: Path) -> subprocess.CompletedProcess:
     return subprocess.run([*cmd, "-input", str(path), "-check"], capture_output=True, text=True, timeout=300)
 
 
-# The Modelica Association's FMU Compliance Checker (../shared/tools, see its README there);
-# TRB_FMUCHECK names another copy.
-FMUCHECK = Path(os.environ.get("TRB_FMUCHECK", REPO.parent / "shared" / "tools" / "fmuCheck.linux64"))
-
-
 @pytest.mark.skipif(not FMUCHECK.is_file(), reason=f"no FMU Compliance Checker at {FMUCHECK}")
 @pytest.mark.parametrize("preset", PRESETS)
 def test_fmu_compliance_checker_reports_no_warning_or_error(package_preset, preset, tmp_path):
     """fmuCheck -k cs: the XML checks and a 0.1 s co-simulation at log level 3 (warnings);
     the FMU and the checker must both report zero warnings and errors."""
-    path = package_preset(preset)
-    proc = subprocess.run(
-        [str(FMUCHECK), "-k", "cs", "-h", "1e-3", "-s", "0.1", "-l", "3", "-o", str(tmp_path / "out.csv"), "-t", str(tmp_path), str(path)],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    out = proc.stdout + proc.stderr
-    assert proc.returncode == 0, f"fmuCheck exited with {proc.returncode}:\n{out}"
-    assert "FMU check summary" in out, out
-    assert re.search(r"FMU reported:\s*0 warning\(s\) and error\(s\)", out), out
-    assert re.search(r"Checker reported:\s*0 Warning\(s\)\s*0 Error\(s\)", out), out
-    assert (tmp_path / "out.csv").stat().st_size > 0
+    fmu_check_passes(package_preset(preset), tmp_path, stop_time=0.1)
 
 
 def test_archive_layout(fmu_path):

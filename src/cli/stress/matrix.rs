@@ -134,13 +134,7 @@ pub fn presets() -> Vec<Preset> {
 // Cases
 // ---------------------------------------------------------------------------------------
 
-/// A value for a parameter.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Value {
-    Real(f64),
-    Integer(i32),
-    Boolean(bool),
-}
+pub use trb::variables::Value;
 
 /// An input signal: a constant or a table interpolated linearly, held outside.
 #[derive(Debug, Clone, PartialEq)]
