@@ -441,14 +441,8 @@ fn long_run_scenario(scenario: &Scenario, seconds: f64) -> Scenario {
 /// `scenario` with the parameter `fidelity` set to `fidelity`.
 pub(super) fn at_fidelity(scenario: &Scenario, fidelity: i32) -> Scenario {
     let mut s = scenario.clone();
-    let (vr, row) = trb::variables::find("fidelity", s.bearing.bearing.roller_count).expect("fidelity in the model description");
-    s.parameters.retain(|(v, _)| v.name != "fidelity");
-    let var = crate::cli::scenario::Var {
-        vr,
-        name: "fidelity".to_string(),
-        ty: row.ty,
-    };
-    s.parameters.push((var, crate::cli::scenario::Value::Integer(fidelity)));
+    s.set_parameter("fidelity", fidelity.into())
+        .expect("fidelity 0, 1 and 2 are in the parameter's range");
     s
 }
 

@@ -753,8 +753,14 @@ fn w25_book_law_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(usize, Option<Cas
 /// The [W25] case `name` run as `variant` says, or None with its failure in the ledger
 /// (`what` says how the run differs from the section's).
 fn w25_run_or_note(name: &str, variant: Variant, what: &str, ledger: &mut Ledger) -> Option<CaseResult> {
-    w25::run_case(&w25::scenario_dir(), name, variant)
-        .map_err(|e| ledger.failures.push(format!("[W25] `{name}` {what}: {e}")))
+    run_or_note(&w25::scenario_dir(), "[W25] ", name, variant, what, ledger)
+}
+
+/// The case `dir/name.json` run as `variant` says, or `None` with why in the ledger's
+/// failures (`source` leading the line, `what` naming the variant).
+fn run_or_note(dir: &Path, source: &str, name: &str, variant: Variant, what: &str, ledger: &mut Ledger) -> Option<CaseResult> {
+    w25::run_case(dir, name, variant)
+        .map_err(|e| ledger.failures.push(format!("{source}`{name}` {what}: {e}")))
         .ok()
 }
 
@@ -785,6 +791,19 @@ fn w25_fidelity_runs(plan: &Plan, ledger: &mut Ledger) -> Vec<(&'static str, Vec
         .collect()
 }
 
+/// The quantities the [W25] cases are compared by across fidelities and tolerances, in the
+/// table's order (θavg, θmax, ϕavg, ϕmax, ϕload in degrees, T, Qi), each with whether
+/// fidelity 0 computes it (no lubricated skew there).
+const FIDELITY_QUANTITIES: [(fn(&CaseResult) -> f64, bool); 7] = [
+    (tilt_avg_deg, true),
+    (tilt_max_deg, true),
+    (skew_avg_deg, false),
+    (skew_max_deg, false),
+    (|r| r.skew_loaded_mean * DEG, false),
+    (|r| r.torque, true),
+    (|r| r.qi_peak, true),
+];
+
 /// Every [W25] case at the three fidelities (traction 0): the angles, the torque and the largest
 /// cone load of the quasi-static (0) and quasi-dynamic (2) models as ratios to the dynamic
 /// model's (1), and each one's wall time per simulated second.
@@ -802,22 +821,13 @@ fn w25_at_three_fidelities(runs: &W25Runs, other: &[(&'static str, Vec<Option<Ca
          | case | θavg | 0/1 | 2/1 | θmax | 0/1 | 2/1 | ϕavg | 2/1 | ϕmax | 2/1 | ϕload | 2/1 | T | 0/1 | 2/1 | Qi | 0/1 | 2/1 | wall 0 \\| 1 \\| 2 |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    let quantities: [(fn(&CaseResult) -> f64, bool); 7] = [
-        (tilt_avg_deg, true),
-        (tilt_max_deg, true),
-        (skew_avg_deg, false),
-        (skew_max_deg, false),
-        (|r| r.skew_loaded_mean * DEG, false),
-        (|r| r.torque, true),
-        (|r| r.qi_peak, true),
-    ];
     for (name, runs_at) in other {
         let Some(dynamic) = runs.case(name, 0) else {
             continue;
         };
         let (f0, f2) = (runs_at[0].as_ref(), runs_at[1].as_ref());
         let mut row = format!("| `{name}` |");
-        for (get, with_f0) in quantities {
+        for (get, with_f0) in FIDELITY_QUANTITIES {
             let v = get(dynamic);
             row += &format!(" {} |", num(v));
             if with_f0 {
@@ -858,16 +868,10 @@ fn fidelity_two_checks(plan: &Plan, runs: &W25Runs, ledger: &mut Ledger) -> Stri
         let (Some(loose), Some(tight)) = (runs.case(name, 0), w25_run_or_note(name, variant, "at tolerance 1e-8", ledger)) else {
             continue;
         };
-        let gets: [fn(&CaseResult) -> f64; 7] = [
-            tilt_avg_deg,
-            tilt_max_deg,
-            skew_avg_deg,
-            skew_max_deg,
-            |r| r.skew_loaded_mean,
-            |r| r.torque,
-            |r| r.qi_peak,
-        ];
-        let change = gets.iter().map(|g| ((g(loose) - g(&tight)) / g(&tight)).abs()).fold(0.0, f64::max);
+        let change = FIDELITY_QUANTITIES
+            .iter()
+            .map(|(g, _)| ((g(loose) - g(&tight)) / g(&tight)).abs())
+            .fold(0.0, f64::max);
         md += &format!("- `{name}`: {change:.1e}\n");
     }
     md += "\n";
@@ -887,9 +891,7 @@ fn cage_slip_check(plan: &Plan, ledger: &mut Ledger) -> String {
             parameters,
             ..Default::default()
         };
-        w25::run_case(&dir, name, variant)
-            .map_err(|e| ledger.failures.push(format!("`{name}` at fidelity {fidelity}: {e}")))
-            .ok()
+        run_or_note(&dir, "", name, variant, &format!("at fidelity {fidelity}"), ledger)
     };
     let kinematic = run(0, &[("cageSlipRate", 0.0)], 0.002, ledger);
     let (f1, f2) = (run(1, &[], stop, ledger), run(2, &[], stop, ledger));
